@@ -1,0 +1,117 @@
+#include <posekit/device_registry.hpp>
+#include <posekit/error.hpp>
+
+#include "device/backend_factory.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <exception>
+#include <sstream>
+
+namespace posekit {
+namespace {
+
+std::vector<std::string> disabled_backends() {
+  std::vector<std::string> names;
+  const char* variable = std::getenv("POSEKIT_DISABLE_BACKENDS");
+  if (variable == nullptr) return names;
+  std::stringstream list(variable);
+  std::string name;
+  while (std::getline(list, name, ',')) {
+    name.erase(0, name.find_first_not_of(" \t"));
+    name.erase(name.find_last_not_of(" \t") + 1);
+    if (!name.empty()) names.push_back(name);
+  }
+  return names;
+}
+
+BackendStatus probe(const detail::BackendFactory& factory, const std::vector<std::string>& disabled) {
+  if (std::find(disabled.begin(), disabled.end(), factory.name) != disabled.end()) {
+    BackendStatus status;
+    status.name = factory.name;
+    status.state = BackendState::unavailable;
+    status.reason = "disabled by POSEKIT_DISABLE_BACKENDS";
+    return status;
+  }
+  try {
+    BackendStatus status = factory.probe();
+    status.name = factory.name;
+    return status;
+  } catch (const std::exception& error) {
+    // Probes are written not to throw; this keeps a broken driver from ending the process.
+    BackendStatus status;
+    status.name = factory.name;
+    status.state = BackendState::unavailable;
+    status.reason = error.what();
+    return status;
+  }
+}
+
+// "auto" prefers a real GPU, then the CPU backend, then GPU APIs emulated on the CPU.
+int auto_rank(const BackendStatus& status) {
+  if (status.name == "cpu") return 1;
+  return status.info.emulated_on_cpu ? 2 : 0;
+}
+
+}  // namespace
+
+const char* to_string(BackendState state) {
+  switch (state) {
+    case BackendState::available: return "available";
+    case BackendState::unavailable: return "unavailable";
+    case BackendState::not_built: return "not built";
+  }
+  return "unknown";
+}
+
+namespace detail {
+BackendStatus not_built_status(const std::string& name, const std::string& reason) {
+  BackendStatus status;
+  status.name = name;
+  status.state = BackendState::not_built;
+  status.reason = reason;
+  return status;
+}
+}  // namespace detail
+
+std::vector<BackendStatus> list_backends() {
+  const std::vector<std::string> disabled = disabled_backends();
+  std::vector<BackendStatus> statuses;
+  for (const detail::BackendFactory& factory : detail::builtin_backends()) {
+    statuses.push_back(probe(factory, disabled));
+  }
+  return statuses;
+}
+
+std::unique_ptr<Device> create_device(const std::string& name) {
+  const std::vector<std::string> disabled = disabled_backends();
+  const std::vector<detail::BackendFactory> factories = detail::builtin_backends();
+  if (name == "auto") {
+    const detail::BackendFactory* best = nullptr;
+    int best_rank = 0;
+    for (const detail::BackendFactory& factory : factories) {
+      const BackendStatus status = probe(factory, disabled);
+      if (status.state != BackendState::available) continue;
+      const int rank = auto_rank(status);
+      if (best == nullptr || rank < best_rank) {
+        best = &factory;
+        best_rank = rank;
+      }
+    }
+    if (best == nullptr) throw Error("no compute device is available (see 'posekit devices')");
+    return best->create();
+  }
+  for (const detail::BackendFactory& factory : factories) {
+    if (factory.name != name) continue;
+    const BackendStatus status = probe(factory, disabled);
+    if (status.state != BackendState::available) {
+      throw Error("device '" + name + "' is " + to_string(status.state) + ": " + status.reason);
+    }
+    return factory.create();
+  }
+  std::string known;
+  for (const detail::BackendFactory& factory : factories) known += " " + factory.name;
+  throw ArgumentError("unknown device '" + name + "' (expected auto or one of:" + known + ")");
+}
+
+}  // namespace posekit

@@ -1,0 +1,181 @@
+// The command line as users and other tools see it: exit status, one-line errors, files left behind.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+#include <sstream>
+
+#include "command_runner.hpp"
+#include "test_data.hpp"
+
+namespace posekit::testing {
+namespace {
+
+struct MalformedCase {
+  std::string file;
+  std::string fragment;
+};
+
+std::vector<MalformedCase> malformed_cases() {
+  std::vector<MalformedCase> cases;
+  std::ifstream table(project_test_data() / "malformed" / "cases.tsv");
+  std::string line;
+  while (std::getline(table, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    const size_t tab = line.find('\t');
+    if (tab == std::string::npos) continue;
+    cases.push_back({line.substr(0, tab), line.substr(tab + 1)});
+  }
+  return cases;
+}
+
+std::vector<std::filesystem::path> folder_contents(const std::filesystem::path& folder) {
+  std::vector<std::filesystem::path> entries;
+  for (const auto& entry : std::filesystem::directory_iterator(folder)) entries.push_back(entry.path());
+  return entries;
+}
+
+class MalformedInput : public ::testing::TestWithParam<MalformedCase> {};
+
+TEST_P(MalformedInput, ConvertFailsWithOneLineAndWritesNothing) {
+  const MalformedCase& malformed = GetParam();
+  const std::string input = (project_test_data() / "malformed" / malformed.file).string();
+  TemporaryDirectory output_folder;
+  const std::string output = (output_folder.path() / "out.obj").string();
+
+  const CommandResult result = run_posekit({"convert", input, "-o", output});
+  EXPECT_EQ(result.exit_status, 1) << result.err;
+  const std::vector<std::string> lines = result.err_lines();
+  ASSERT_EQ(lines.size(), 1u) << result.err;
+  EXPECT_NE(lines[0].find(malformed.file), std::string::npos) << "error does not name the file: " << lines[0];
+  EXPECT_NE(lines[0].find(malformed.fragment), std::string::npos) << lines[0];
+  EXPECT_TRUE(folder_contents(output_folder.path()).empty()) << "an output or temporary file was left";
+}
+
+TEST_P(MalformedInput, CheckFailsWithOneLine) {
+  const MalformedCase& malformed = GetParam();
+  const std::string input = (project_test_data() / "malformed" / malformed.file).string();
+  const CommandResult result = run_posekit({"check", input});
+  EXPECT_EQ(result.exit_status, 1) << result.err;
+  EXPECT_EQ(result.err_lines().size(), 1u) << result.err;
+  EXPECT_TRUE(result.out.empty()) << result.out;
+}
+
+std::string case_name(const ::testing::TestParamInfo<MalformedCase>& info) {
+  std::string name = info.param.file;
+  for (char& c : name) {
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  }
+  return name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Corpus, MalformedInput, ::testing::ValuesIn(malformed_cases()), case_name);
+
+TEST(MalformedCorpus, HasAtLeastTwentyCases) { EXPECT_GE(malformed_cases().size(), 20u); }
+
+TEST(Cli, EverySubcommandHasHelp) {
+  for (const char* command : {"devices", "check", "convert", "generate", "demo"}) {
+    const CommandResult result = run_posekit({command, "--help"});
+    EXPECT_EQ(result.exit_status, 0) << command << ": " << result.err;
+    EXPECT_NE(result.out.find("Usage"), std::string::npos) << command;
+  }
+}
+
+TEST(Cli, UsageErrorIsOneLineWithStatusTwo) {
+  for (const std::vector<std::string>& arguments :
+       std::vector<std::vector<std::string>>{{"frobnicate"}, {"check"}, {"check", "a.obj", "--bogus"}, {}}) {
+    const CommandResult result = run_posekit(arguments);
+    EXPECT_EQ(result.exit_status, 2) << result.err;
+    EXPECT_EQ(result.err_lines().size(), 1u) << result.err;
+  }
+}
+
+TEST(Cli, MissingFileNamesIt) {
+  const CommandResult result = run_posekit({"check", "/nonexistent/pose.obj"});
+  EXPECT_EQ(result.exit_status, 1);
+  ASSERT_EQ(result.err_lines().size(), 1u) << result.err;
+  EXPECT_NE(result.err.find("/nonexistent/pose.obj"), std::string::npos) << result.err;
+}
+
+TEST(Cli, DevicesListsCpuAvailableAndEveryBackend) {
+  const CommandResult table = run_posekit({"devices"});
+  ASSERT_EQ(table.exit_status, 0) << table.err;
+  const CommandResult result = run_posekit({"devices", "--json"});
+  ASSERT_EQ(result.exit_status, 0) << result.err;
+  const nlohmann::json report = nlohmann::json::parse(result.out);
+  std::vector<std::string> names;
+  for (const nlohmann::json& backend : report.at("backends")) {
+    names.push_back(backend.at("name"));
+    if (backend.at("name") == "cpu") {
+      EXPECT_EQ(backend.at("state"), "available");
+      EXPECT_TRUE(backend.at("fp64").get<bool>());
+    } else if (backend.at("state") != "available") {
+      EXPECT_FALSE(backend.at("reason").get<std::string>().empty()) << backend.dump();
+    }
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{"cuda", "vulkan", "opencl", "cpu"}));
+}
+
+TEST(Cli, GeneratedDemoPosesIntersectOnlyWhenBent) {
+  TemporaryDirectory folder;
+  const CommandResult generated = run_posekit({"generate", "--output-dir", folder.path().string()});
+  ASSERT_EQ(generated.exit_status, 0) << generated.err;
+  const std::string rest = (folder.path() / "arm-rest.obj").string();
+  const CommandResult rest_check = run_posekit({"check", rest, "--json"});
+  ASSERT_EQ(rest_check.exit_status, 0) << rest_check.err;
+  EXPECT_EQ(nlohmann::json::parse(rest_check.out).at("self_intersecting_faces"), 0);
+
+  int bent_poses = 0;
+  for (const auto& file : folder_contents(folder.path())) {
+    if (file.filename().string().rfind("arm-bent-", 0) != 0) continue;
+    ++bent_poses;
+    const CommandResult check = run_posekit({"check", file.string(), "--reference", rest, "--json"});
+    ASSERT_EQ(check.exit_status, 0) << check.err;
+    EXPECT_EQ(nlohmann::json::parse(check.out).at("faces"),
+              nlohmann::json::parse(rest_check.out).at("faces"));
+  }
+  EXPECT_GE(bent_poses, 1);
+}
+
+TEST(Cli, CheckCountsLionIntersections) {
+  POSEKIT_REQUIRE_SHARED_POSE(target, "lion-poses/lion-01.obj");
+  POSEKIT_REQUIRE_SHARED_POSE(reference, "lion-poses/lion-reference.obj");
+
+  const CommandResult alone = run_posekit({"check", target.string(), "--json"});
+  ASSERT_EQ(alone.exit_status, 0) << alone.err;
+  EXPECT_EQ(nlohmann::json::parse(alone.out).at("self_intersecting_faces"), 495);
+
+  const CommandResult against = run_posekit({"check", target.string(), "--reference", reference.string(), "--json"});
+  ASSERT_EQ(against.exit_status, 0) << against.err;
+  const nlohmann::json report = nlohmann::json::parse(against.out);
+  EXPECT_EQ(report.at("new_self_intersecting_faces"), 357);
+  EXPECT_EQ(report.at("reference_self_intersecting_faces"), 148);
+
+  const CommandResult text = run_posekit({"check", reference.string()});
+  ASSERT_EQ(text.exit_status, 0) << text.err;
+  EXPECT_NE(text.out.find("148 self-intersecting faces"), std::string::npos) << text.out;
+}
+
+TEST(Cli, CheckRejectsDifferentConnectivity) {
+  POSEKIT_REQUIRE_SHARED_POSE(lion, "lion-poses/lion-01.obj");
+  POSEKIT_REQUIRE_SHARED_POSE(cat, "cat-poses/cat-01.obj");
+  const CommandResult result = run_posekit({"check", lion.string(), "--reference", cat.string()});
+  EXPECT_EQ(result.exit_status, 1);
+  ASSERT_EQ(result.err_lines().size(), 1u) << result.err;
+  EXPECT_NE(result.err.find("cat-01.obj"), std::string::npos) << result.err;
+}
+
+TEST(Cli, ConvertRoundTripKeepsTheMesh) {
+  POSEKIT_REQUIRE_SHARED_POSE(lion, "lion-poses/lion-01.obj");
+  TemporaryDirectory folder;
+  const std::string off = (folder.path() / "lion.off").string();
+  const std::string obj = (folder.path() / "lion.obj").string();
+  ASSERT_EQ(run_posekit({"convert", lion.string(), "-o", off}).exit_status, 0);
+  ASSERT_EQ(run_posekit({"convert", off, "-o", obj}).exit_status, 0);
+  const CommandResult check = run_posekit({"check", obj, "--reference", lion.string(), "--json"});
+  ASSERT_EQ(check.exit_status, 0) << check.err;
+  EXPECT_EQ(nlohmann::json::parse(check.out).at("self_intersecting_faces"), 495);
+}
+
+}  // namespace
+}  // namespace posekit::testing

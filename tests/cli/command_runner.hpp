@@ -1,0 +1,20 @@
+// Runs the posekit executable in a child process and captures what it printed.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace posekit::testing {
+
+struct CommandResult {
+  int exit_status = -1;  ///< the process's exit code, or 128 + signal when it was killed
+  std::string out;
+  std::string err;
+  /// Lines of stderr (a final newline does not start a new line).
+  std::vector<std::string> err_lines() const;
+};
+
+/// Runs `posekit ARGS...` (the build's own binary) with stdin closed.
+CommandResult run_posekit(const std::vector<std::string>& arguments);
+
+}  // namespace posekit::testing
