@@ -43,4 +43,4 @@ class TemporaryDirectory {
 #define POSEKIT_REQUIRE_SHARED_POSE(variable, relative)                                     \
   const auto variable##_optional = ::posekit::testing::shared_pose(relative);               \
   if (!variable##_optional) GTEST_SKIP() << "shared pose data not found: " << (relative); \
-  const std::filesystem::path variable = *variable##_optional
+  const std::filesystem::path& variable = *variable##_optional

@@ -38,7 +38,9 @@ class DeviceField {
 /// The operations a backend may provide; ask Device::supports before relying on one.
 enum class DeviceOperation { rbf_assembly, rbf_evaluation, rk45_integration };
 
-/// Controls of the adaptive Dormand-Prince 5(4) integration.
+/// Controls of the adaptive Dormand-Prince 5(4) integration. Times and tolerances must be finite,
+/// relative_tolerance >= 0, absolute_tolerance > 0, initial_step > 0, min_step >= 0 and
+/// max_steps > 0; Device::integrate_rk45 throws ArgumentError naming the option otherwise.
 struct Rk45Options {
   double t_begin = 0.0;                ///< start time of every particle
   double t_end = 1.0;                  ///< end time of every particle
@@ -67,6 +69,10 @@ struct Rk45Summary {
   long long rhs_evaluations = 0;
   long long failures = 0;  ///< particles whose status is not ok
 };
+
+/// Throws ArgumentError naming the first option out of range (non-finite times or tolerances,
+/// absolute_tolerance <= 0, initial_step <= 0, min_step < 0, max_steps <= 0). Every backend calls it.
+void validate_rk45_options(const Rk45Options& options);
 
 /// Adds up per-particle statistics.
 Rk45Summary summarize(const std::vector<Rk45ParticleStats>& stats);
@@ -106,7 +112,8 @@ class Device {
 
   /// Integrates every particle x (row of `positions`, #P by 3, overwritten with the end positions)
   /// through dx/dt = f(x, t) from options.t_begin to options.t_end, each with its own adaptive step.
-  /// Returns one statistics record per particle.
+  /// Returns one statistics record per particle. A particle that fails is not an exception: its
+  /// status says why and its row holds the position it had reached.
   virtual std::vector<Rk45ParticleStats> integrate_rk45(const DeviceField& field,
                                                         Eigen::Ref<Eigen::MatrixX3d> positions,
                                                         const Rk45Options& options) = 0;

@@ -1,5 +1,6 @@
 // Reads a pose, counts its self-intersecting faces and lists the compute devices.
 #include <posekit/device_registry.hpp>
+#include <posekit/error.hpp>
 #include <posekit/mesh_io.hpp>
 #include <posekit/self_intersections.hpp>
 

@@ -1,0 +1,204 @@
+#include "geometry/vertex_checks.hpp"
+
+#include <posekit/self_intersections.hpp>
+#include <posekit/topology.hpp>
+
+#include <CGAL/Bbox_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/box_intersection_d.h>
+#include <CGAL/intersections.h>
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <iterator>
+#include <vector>
+
+namespace posekit {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_3;
+using Segment = Kernel::Segment_3;
+using Triangle = Kernel::Triangle_3;
+using FacePair = std::pair<int, int>;
+
+// Bounding box of one face; its id is the face index, so boxes may be copied freely by the
+// (parallel) box intersection, and no global counter is touched (safe when several meshes are
+// checked at once).
+class FaceBox {
+ public:
+  using NT = double;
+  using ID = std::size_t;
+
+  FaceBox() = default;
+  FaceBox(const CGAL::Bbox_3& box, int face) : box_(box), face_(face) {}
+  static int dimension() { return 3; }
+  double min_coord(int axis) const { return box_.min(axis); }
+  double max_coord(int axis) const { return box_.max(axis); }
+  ID id() const { return static_cast<ID>(face_); }
+  int face() const { return face_; }
+
+ private:
+  CGAL::Bbox_3 box_;
+  int face_ = -1;
+};
+
+// Same rules as CGAL::Polygon_mesh_processing::internal::do_faces_intersect, with shared vertices
+// and edges recognized by vertex index instead of halfedge adjacency.
+class FacePairTest {
+ public:
+  FacePairTest(const std::vector<Point>& points, const Eigen::MatrixX3i& faces) : points_(points), faces_(faces) {}
+
+  bool intersect(int f, int g) const {
+    const std::array<int, 3> a = corners(f);
+    const std::array<int, 3> b = corners(g);
+    int shared_count = 0;
+    int first_shared_in_a = -1;
+    int first_shared_in_b = -1;
+    std::array<bool, 3> a_shared{false, false, false};
+    std::array<bool, 3> b_shared{false, false, false};
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) {
+        if (a[i] != b[j] || a_shared[i] || b_shared[j]) continue;
+        a_shared[i] = b_shared[j] = true;
+        if (shared_count++ == 0) {
+          first_shared_in_a = i;
+          first_shared_in_b = j;
+        }
+      }
+    }
+
+    if (shared_count >= 3) return true;  // the same triangle twice
+    if (shared_count == 2) {
+      // Sharing an edge: they overlap only when folded flat onto each other, i.e. the two opposite
+      // corners are coplanar with the edge and on the same side of it.
+      const int a_apex = unshared_corner(a_shared);
+      const int b_apex = unshared_corner(b_shared);
+      const Point& p = point(a[(a_apex + 1) % 3]);
+      const Point& q = point(a[(a_apex + 2) % 3]);
+      const Point& r = point(a[a_apex]);
+      const Point& s = point(b[b_apex]);
+      return CGAL::coplanar(p, q, r, s) && CGAL::coplanar_orientation(p, q, r, s) == CGAL::POSITIVE;
+    }
+    const Triangle ta = triangle(a);
+    const Triangle tb = triangle(b);
+    if (shared_count == 1) {
+      // Sharing one vertex: any further contact shows up on an edge opposite the shared vertex.
+      const Segment a_opposite(point(a[(first_shared_in_a + 1) % 3]), point(a[(first_shared_in_a + 2) % 3]));
+      const Segment b_opposite(point(b[(first_shared_in_b + 1) % 3]), point(b[(first_shared_in_b + 2) % 3]));
+      return CGAL::do_intersect(ta, b_opposite) || CGAL::do_intersect(tb, a_opposite);
+    }
+    return CGAL::do_intersect(ta, tb);
+  }
+
+ private:
+  std::array<int, 3> corners(int f) const { return {faces_(f, 0), faces_(f, 1), faces_(f, 2)}; }
+  const Point& point(int vertex) const { return points_[static_cast<size_t>(vertex)]; }
+  Triangle triangle(const std::array<int, 3>& c) const { return {point(c[0]), point(c[1]), point(c[2])}; }
+  static int unshared_corner(const std::array<bool, 3>& shared) {
+    return !shared[0] ? 0 : (!shared[1] ? 1 : 2);
+  }
+
+  const std::vector<Point>& points_;
+  const Eigen::MatrixX3i& faces_;
+};
+
+// CGAL's parallel box intersection works on four copies of the boxes in sixteen tasks; it only pays
+// off with more than a couple of cores and more than a few thousand faces (measured on the elephant:
+// with 2 cores the sequential search is about 10% faster).
+constexpr std::size_t kParallelBoxThreshold = 4096;
+constexpr int kParallelBoxMinThreads = 4;
+// Boxes per leaf of CGAL's segment tree below which it scans pairs directly; 1000 was fastest on
+// the elephant (84k faces); with the library's default of 10 the whole search takes 2.5 times longer.
+constexpr std::ptrdiff_t kBoxCutoff = 1000;
+
+std::vector<FacePair> candidate_pairs(std::vector<FaceBox>& boxes) {
+  tbb::enumerable_thread_specific<std::vector<FacePair>> found;
+  auto collect = [&found](const FaceBox& a, const FaceBox& b) {
+    found.local().emplace_back(std::min(a.face(), b.face()), std::max(a.face(), b.face()));
+  };
+  if (boxes.size() >= kParallelBoxThreshold &&
+      tbb::this_task_arena::max_concurrency() >= kParallelBoxMinThreads) {
+    CGAL::box_self_intersection_d<CGAL::Parallel_tag>(boxes.begin(), boxes.end(), collect, kBoxCutoff);
+  } else {
+    CGAL::box_self_intersection_d<CGAL::Sequential_tag>(boxes.begin(), boxes.end(), collect, kBoxCutoff);
+  }
+  std::vector<FacePair> all;
+  std::size_t total = 0;
+  for (const auto& part : found) total += part.size();
+  all.reserve(total);
+  for (const auto& part : found) all.insert(all.end(), part.begin(), part.end());
+  return all;
+}
+
+}  // namespace
+
+std::vector<FacePair> self_intersecting_face_pairs(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces) {
+  check_face_indices(faces, static_cast<int>(vertices.rows()));
+  detail::check_finite_vertices(vertices, "self_intersecting_faces");
+
+  std::vector<Point> points;
+  points.reserve(static_cast<size_t>(vertices.rows()));
+  for (Eigen::Index v = 0; v < vertices.rows(); ++v) points.emplace_back(vertices(v, 0), vertices(v, 1), vertices(v, 2));
+
+  // Degenerate faces are reported on their own and left out of the pair tests, as CGAL does: the
+  // triangle predicates are undefined for them.
+  std::vector<FacePair> result;
+  std::vector<FaceBox> boxes;
+  boxes.reserve(static_cast<size_t>(faces.rows()));
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    const Point& p = points[static_cast<size_t>(faces(f, 0))];
+    const Point& q = points[static_cast<size_t>(faces(f, 1))];
+    const Point& r = points[static_cast<size_t>(faces(f, 2))];
+    if (CGAL::collinear(p, q, r)) {
+      result.emplace_back(static_cast<int>(f), static_cast<int>(f));
+    } else {
+      boxes.emplace_back(p.bbox() + q.bbox() + r.bbox(), static_cast<int>(f));
+    }
+  }
+
+  const std::vector<FacePair> candidates = candidate_pairs(boxes);
+  std::vector<unsigned char> hit(candidates.size(), 0);
+  const FacePairTest test(points, faces);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates.size(), 1024),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                        hit[i] = test.intersect(candidates[i].first, candidates[i].second) ? 1 : 0;
+                      }
+                    });
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    if (hit[i] != 0) result.push_back(candidates[i]);
+  }
+  std::sort(result.begin(), result.end());
+  result.erase(std::unique(result.begin(), result.end()), result.end());
+  return result;
+}
+
+std::vector<int> self_intersecting_faces(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces) {
+  std::vector<int> result;
+  for (const auto& [f, g] : self_intersecting_face_pairs(vertices, faces)) {
+    result.push_back(f);
+    result.push_back(g);
+  }
+  std::sort(result.begin(), result.end());
+  result.erase(std::unique(result.begin(), result.end()), result.end());
+  return result;
+}
+
+std::vector<int> new_intersecting_faces(const std::vector<int>& mesh_faces, const std::vector<int>& reference_faces) {
+  std::vector<int> mesh = mesh_faces;
+  std::vector<int> reference = reference_faces;
+  std::sort(mesh.begin(), mesh.end());
+  mesh.erase(std::unique(mesh.begin(), mesh.end()), mesh.end());
+  std::sort(reference.begin(), reference.end());
+  std::vector<int> result;
+  std::set_difference(mesh.begin(), mesh.end(), reference.begin(), reference.end(), std::back_inserter(result));
+  return result;
+}
+
+}  // namespace posekit

@@ -1,0 +1,81 @@
+#include <posekit/error.hpp>
+#include <posekit/geometry.hpp>
+
+#include "test_data.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+namespace posekit {
+namespace {
+
+using ::posekit::testing::matrices_near;
+
+Eigen::MatrixX3d corner_tetrahedron() {
+  Eigen::MatrixX3d vertices(4, 3);
+  vertices << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1;
+  return vertices;
+}
+
+Eigen::MatrixX3i outward_tetrahedron_faces() {
+  Eigen::MatrixX3i faces(4, 3);
+  faces << 0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3;
+  return faces;
+}
+
+TEST(BoundingBoxDiagonal, IsTheLengthOfTheBoxDiagonal) {
+  Eigen::MatrixX3d vertices(3, 3);
+  vertices << 1, -2, 0.5,  //
+      -1, 2, 3.5,          //
+      0, 0, 1;
+  EXPECT_DOUBLE_EQ(bounding_box_diagonal(vertices), std::sqrt(4.0 + 16.0 + 9.0));
+  EXPECT_DOUBLE_EQ(bounding_box_diagonal(vertices.topRows(1)), 0.0);
+}
+
+TEST(BoundingBoxDiagonal, RejectsEmptyAndNonFinite) {
+  EXPECT_THROW(bounding_box_diagonal(Eigen::MatrixX3d(0, 3)), ArgumentError);
+  Eigen::MatrixX3d vertices = corner_tetrahedron();
+  vertices(2, 1) = std::numeric_limits<double>::quiet_NaN();
+  try {
+    bounding_box_diagonal(vertices);
+    FAIL() << "no exception";
+  } catch (const ArgumentError& error) {
+    EXPECT_NE(std::string(error.what()).find("vertex 2"), std::string::npos) << error.what();
+  }
+}
+
+TEST(FaceNormals, PointOutOfTheTetrahedron) {
+  const Eigen::MatrixX3d normals = face_normals(corner_tetrahedron(), outward_tetrahedron_faces());
+  Eigen::MatrixX3d expected(4, 3);
+  const double third = 1.0 / std::sqrt(3.0);
+  expected << 0, 0, -1, 0, -1, 0, -1, 0, 0, third, third, third;
+  EXPECT_TRUE(matrices_near(normals, expected, 1e-15, 0.0));
+}
+
+TEST(FaceNormals, DegenerateFaceGetsZero) {
+  Eigen::MatrixX3d vertices(3, 3);
+  vertices << 0, 0, 0, 1, 1, 1, 2, 2, 2;
+  Eigen::MatrixX3i faces(1, 3);
+  faces << 0, 1, 2;
+  EXPECT_TRUE(face_normals(vertices, faces).isZero(0.0));
+  EXPECT_EQ(face_areas(vertices, faces)(0), 0.0);
+}
+
+TEST(FaceAreas, MatchTheTetrahedron) {
+  const Eigen::VectorXd areas = face_areas(corner_tetrahedron(), outward_tetrahedron_faces());
+  Eigen::VectorXd expected(4);
+  expected << 0.5, 0.5, 0.5, std::sqrt(3.0) / 2.0;
+  EXPECT_TRUE(matrices_near(areas, expected, 1e-15, 0.0));
+}
+
+TEST(FaceAreas, RejectBadIndex) {
+  Eigen::MatrixX3i faces = outward_tetrahedron_faces();
+  faces(3, 0) = 4;
+  EXPECT_THROW(face_areas(corner_tetrahedron(), faces), ArgumentError);
+  EXPECT_THROW(face_normals(corner_tetrahedron(), faces), ArgumentError);
+}
+
+}  // namespace
+}  // namespace posekit

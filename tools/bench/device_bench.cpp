@@ -1,0 +1,160 @@
+// Benchmarks of the device operations on the CPU backend, at the sizes pose correction meets:
+// ~65,000 constraints against ~2,700 centers, 5,000 vertices integrated through the fitted field.
+//
+// Counters: evaluations/s = points x centers per second of wall time (the kernel phi evaluations);
+// for RK45 the field evaluations per particle and how far the particles moved.
+#include <posekit/cpu_device.hpp>
+
+#include "cpu/cpu_device.hpp"
+#include "cpu/kernel_isa.hpp"
+
+#include <benchmark/benchmark.h>
+
+#include <random>
+#include <string>
+
+namespace posekit {
+namespace {
+
+Points4 ball_points(std::mt19937_64& engine, Eigen::Index count) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  Points4 points(count, 4);
+  for (Eigen::Index i = 0; i < count; ++i) {
+    Eigen::Vector3d p;
+    do {
+      p = Eigen::Vector3d(unit(engine), unit(engine), unit(engine));
+    } while (p.squaredNorm() > 1.0);
+    points.row(i) << p.transpose(), 0.5 * (unit(engine) + 1.0);
+  }
+  return points;
+}
+
+// A smooth random field: centers in the unit ball x [0, 1], small random weights, a small
+// polynomial part; it moves particles by a few tenths over t in [0, 1], like a correction field.
+RbfField smooth_field(Eigen::Index centers, std::uint64_t seed) {
+  std::mt19937_64 engine(seed);
+  std::uniform_real_distribution<double> weight(-0.005, 0.005);
+  RbfField field;
+  field.centers = ball_points(engine, centers);
+  field.weights.resize(centers, 3);
+  for (Eigen::Index i = 0; i < field.weights.size(); ++i) field.weights.data()[i] = weight(engine);
+  for (Eigen::Index i = 0; i < field.polynomial.size(); ++i)
+    field.polynomial.data()[i] = weight(engine);
+  return field;
+}
+
+cpu::KernelIsa isa_argument(std::int64_t value) { return static_cast<cpu::KernelIsa>(value); }
+
+// "avx512 kernels, 2 threads"
+std::string describe(const Device& device) {
+  const DeviceInfo info = device.info();
+  const std::string kernels = info.driver.substr(info.driver.find(", ") + 2);
+  return kernels + ", " + std::to_string(info.compute_units) +
+         (info.compute_units == 1 ? " thread" : " threads");
+}
+
+// Arguments: points, centers, instruction set (0 baseline, 1 avx2, 2 avx512), threads (0: all).
+void BM_RbfEvaluation(benchmark::State& state) {
+  const Eigen::Index points = state.range(0);
+  const Eigen::Index centers = state.range(1);
+  const cpu::KernelIsa isa = isa_argument(state.range(2));
+  if (!cpu::is_supported(isa)) {
+    state.SkipWithError("instruction set not supported here");
+    return;
+  }
+  const std::unique_ptr<Device> device =
+      cpu::make_cpu_device(static_cast<int>(state.range(3)), isa);
+  std::mt19937_64 engine(1);
+  const std::unique_ptr<DeviceField> field = device->upload_field(smooth_field(centers, 2));
+  const Points4 queries = ball_points(engine, points);
+  Eigen::MatrixX3d values(points, 3);
+  for (auto _ : state) {
+    device->evaluate_rbf(*field, queries, values);
+    benchmark::DoNotOptimize(values.data());
+    benchmark::ClobberMemory();
+  }
+  state.counters["evaluations/s"] = benchmark::Counter(
+      static_cast<double>(points * centers), benchmark::Counter::kIsIterationInvariantRate);
+  state.SetLabel(describe(*device));
+}
+BENCHMARK(BM_RbfEvaluation)
+    ->ArgNames({"points", "centers", "isa", "threads"})
+    ->Args({65000, 2700, 2, 0})
+    ->Args({65000, 2700, 2, 1})
+    ->Args({65000, 2700, 1, 0})
+    ->Args({65000, 2700, 0, 0})
+    ->Args({65000, 128, 2, 0})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// Arguments: points, centers, instruction set; all threads, with the 15 polynomial columns.
+void BM_RbfAssembly(benchmark::State& state) {
+  const Eigen::Index points = state.range(0);
+  const Eigen::Index centers = state.range(1);
+  const cpu::KernelIsa isa = isa_argument(state.range(2));
+  if (!cpu::is_supported(isa)) {
+    state.SkipWithError("instruction set not supported here");
+    return;
+  }
+  const std::unique_ptr<Device> device = cpu::make_cpu_device(0, isa);
+  std::mt19937_64 engine(3);
+  const Points4 point_set = ball_points(engine, points);
+  const Points4 center_set = ball_points(engine, centers);
+  // Touched once here, so that the first iteration does not time the page faults of a new block.
+  Eigen::MatrixXd block = Eigen::MatrixXd::Zero(points, centers + kRbfPolynomialTerms);
+  for (auto _ : state) {
+    device->assemble_rbf_block(point_set, center_set, true, block);
+    benchmark::DoNotOptimize(block.data());
+    benchmark::ClobberMemory();
+  }
+  state.counters["evaluations/s"] = benchmark::Counter(
+      static_cast<double>(points * centers), benchmark::Counter::kIsIterationInvariantRate);
+  state.SetLabel(describe(*device));
+}
+BENCHMARK(BM_RbfAssembly)
+    ->ArgNames({"points", "centers", "isa"})
+    ->Args({65000, 128, 2})   // one center-selection round: new columns for every constraint
+    ->Args({2700, 2700, 2})   // the whole RBF block of a finished fit
+    ->Args({65000, 2700, 2})  // a 1.4 GB block: memory bound
+    ->Args({2700, 2700, 0})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// Arguments: particles, centers. Default Rk45Options (rtol 1e-7, atol 1e-9, t from 0 to 1).
+void BM_Rk45Batch(benchmark::State& state) {
+  const Eigen::Index particles = state.range(0);
+  const Eigen::Index centers = state.range(1);
+  const std::unique_ptr<Device> device = make_cpu_device();
+  const std::unique_ptr<DeviceField> field = device->upload_field(smooth_field(centers, 4));
+  std::mt19937_64 engine(5);
+  const Eigen::MatrixX3d start = ball_points(engine, particles).leftCols<3>();
+  Eigen::MatrixX3d positions = start;
+  Rk45Summary summary;
+  for (auto _ : state) {
+    state.PauseTiming();
+    positions = start;
+    state.ResumeTiming();
+    summary = summarize(device->integrate_rk45(*field, positions, Rk45Options()));
+    benchmark::DoNotOptimize(positions.data());
+  }
+  const auto count = static_cast<double>(particles);
+  const Eigen::VectorXd moved = (positions - start).rowwise().norm();
+  state.counters["rhs/particle"] = static_cast<double>(summary.rhs_evaluations) / count;
+  state.counters["steps/particle"] = static_cast<double>(summary.accepted_steps) / count;
+  state.counters["rejected/particle"] = static_cast<double>(summary.rejected_steps) / count;
+  state.counters["failures"] = static_cast<double>(summary.failures);
+  state.counters["mean_moved"] = moved.mean();
+  state.counters["max_moved"] = moved.maxCoeff();
+  state.counters["evaluations/s"] = benchmark::Counter(
+      static_cast<double>(summary.rhs_evaluations) * static_cast<double>(centers),
+      benchmark::Counter::kIsIterationInvariantRate);
+  state.SetLabel(describe(*device));
+}
+BENCHMARK(BM_Rk45Batch)
+    ->ArgNames({"particles", "centers"})
+    ->Args({5000, 2700})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+}  // namespace
+}  // namespace posekit

@@ -1,0 +1,78 @@
+// Self-intersection detection on the project's demo arm and on real poses (skipped without the data).
+// The data folder is $POSEKIT_DATA_DIR, else POSEKIT_BENCH_DATA_DIR given at build time.
+#include <posekit/demo_shape.hpp>
+#include <posekit/mesh_io.hpp>
+#include <posekit/self_intersections.hpp>
+
+#include <benchmark/benchmark.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+
+namespace {
+
+#ifndef POSEKIT_BENCH_DATA_DIR
+#define POSEKIT_BENCH_DATA_DIR ""
+#endif
+
+std::optional<std::filesystem::path> shared_pose(const std::string& relative) {
+  const char* override_dir = std::getenv("POSEKIT_DATA_DIR");
+  const std::filesystem::path folder = override_dir != nullptr ? override_dir : POSEKIT_BENCH_DATA_DIR;
+  std::error_code error;
+  const std::filesystem::path file = folder / relative;
+  if (folder.empty() || !std::filesystem::is_regular_file(file, error)) return std::nullopt;
+  return file;
+}
+
+// Reading the elephant takes longer than checking it; read each file once per process.
+const posekit::Mesh* cached_pose(const std::string& relative) {
+  static std::map<std::string, std::optional<posekit::Mesh>> cache;
+  auto found = cache.find(relative);
+  if (found == cache.end()) {
+    const auto file = shared_pose(relative);
+    found = cache.emplace(relative, file ? std::optional<posekit::Mesh>(posekit::read_mesh(*file)) : std::nullopt).first;
+  }
+  return found->second ? &*found->second : nullptr;
+}
+
+void run_self_intersections(benchmark::State& state, const posekit::Mesh& mesh) {
+  size_t intersecting = 0;
+  for (auto _ : state) {
+    const std::vector<int> faces = posekit::self_intersecting_faces(mesh.vertices, mesh.faces);
+    intersecting = faces.size();
+    benchmark::DoNotOptimize(faces.data());
+  }
+  state.counters["faces"] = static_cast<double>(mesh.faces.rows());
+  state.counters["intersecting"] = static_cast<double>(intersecting);
+  state.SetItemsProcessed(state.iterations() * mesh.faces.rows());
+}
+
+void BM_SelfIntersectionsDemoArm(benchmark::State& state) {
+  posekit::DemoArmOptions options;
+  options.ring_segments = static_cast<int>(state.range(0));
+  options.bend_angles_degrees = {135.0};
+  const posekit::PoseSet arm = posekit::make_demo_arm(options);
+  run_self_intersections(state, arm.mesh(1));
+}
+// The detection runs on several threads: wall-clock time is what a caller waits for.
+BENCHMARK(BM_SelfIntersectionsDemoArm)->Arg(48)->Arg(96)->UseRealTime()->Unit(benchmark::kMillisecond);
+
+void BM_SelfIntersectionsSharedPose(benchmark::State& state, const std::string& relative) {
+  const posekit::Mesh* mesh = cached_pose(relative);
+  if (mesh == nullptr) {
+    state.SkipWithError(("shared pose data not found: " + relative + " (set POSEKIT_DATA_DIR)").c_str());
+    return;
+  }
+  run_self_intersections(state, *mesh);
+}
+BENCHMARK_CAPTURE(BM_SelfIntersectionsSharedPose, lion_01, std::string("lion-poses/lion-01.obj"))
+    ->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_SelfIntersectionsSharedPose, elephant_01, std::string("elephant-poses/elephant-01.obj"))
+    ->UseRealTime()->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
