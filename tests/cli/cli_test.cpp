@@ -74,7 +74,7 @@ INSTANTIATE_TEST_SUITE_P(Corpus, MalformedInput, ::testing::ValuesIn(malformed_c
 TEST(MalformedCorpus, HasAtLeastTwentyCases) { EXPECT_GE(malformed_cases().size(), 20u); }
 
 TEST(Cli, EverySubcommandHasHelp) {
-  for (const char* command : {"devices", "check", "convert", "generate", "demo"}) {
+  for (const char* command : {"devices", "check", "convert", "generate", "demo", "correct"}) {
     const CommandResult result = run_posekit({command, "--help"});
     EXPECT_EQ(result.exit_status, 0) << command << ": " << result.err;
     EXPECT_NE(result.out.find("Usage"), std::string::npos) << command;
@@ -175,6 +175,71 @@ TEST(Cli, ConvertRoundTripKeepsTheMesh) {
   const CommandResult check = run_posekit({"check", obj, "--reference", lion.string(), "--json"});
   ASSERT_EQ(check.exit_status, 0) << check.err;
   EXPECT_EQ(nlohmann::json::parse(check.out).at("self_intersecting_faces"), 495);
+}
+
+class CorrectCommand : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ASSERT_EQ(run_posekit({"generate", "--output-dir", poses_.path().string(), "--angles", "135"}).exit_status, 0);
+    rest_ = (poses_.path() / "arm-rest.obj").string();
+    bent_ = (poses_.path() / "arm-bent-135.obj").string();
+    output_ = (outputs_.path() / "corrected.obj").string();
+  }
+  // Nothing may be written when the command fails.
+  void expect_failure_without_output(const CommandResult& result, int status) {
+    EXPECT_EQ(result.exit_status, status) << result.err;
+    EXPECT_EQ(result.err_lines().size(), 1u) << result.err;
+    EXPECT_TRUE(folder_contents(outputs_.path()).empty());
+  }
+  TemporaryDirectory poses_;
+  TemporaryDirectory outputs_;
+  std::string rest_, bent_, output_;
+};
+
+TEST_F(CorrectCommand, CorrectsTheDemoArmAndWritesItsReport) {
+  const std::string report_file = (outputs_.path() / "report.json").string();
+  const CommandResult result = run_posekit({"correct", rest_, bent_, "-o", output_, "--report", report_file});
+  ASSERT_EQ(result.exit_status, 0) << result.err;
+  std::ifstream stream(report_file);
+  const nlohmann::json report = nlohmann::json::parse(stream);
+  EXPECT_GT(report.at("intersecting_faces").at("target").get<int>(), 0);
+  EXPECT_EQ(report.at("intersecting_faces").at("new_in_result"), 0);
+  EXPECT_GT(report.at("fit").at("centers").get<int>(), 0);
+  EXPECT_EQ(report.at("rk45").at("failures"), 0);
+  for (const char* stage : {"key_frames", "classification", "fitting", "integration", "verification", "total"}) {
+    EXPECT_TRUE(report.at("seconds").contains(stage)) << stage;
+  }
+  const CommandResult check = run_posekit({"check", output_, "--reference", rest_, "--json"});
+  ASSERT_EQ(check.exit_status, 0) << check.err;
+  EXPECT_EQ(nlohmann::json::parse(check.out).at("new_self_intersecting_faces"), 0);
+}
+
+TEST_F(CorrectCommand, RejectsDifferentConnectivity) {
+  TemporaryDirectory coarse;
+  ASSERT_EQ(run_posekit({"generate", "--output-dir", coarse.path().string(), "--ring-segments", "16"}).exit_status, 0);
+  const std::string other = (coarse.path() / "arm-bent-135.obj").string();
+  expect_failure_without_output(run_posekit({"correct", rest_, other, "-o", output_}), 1);
+}
+
+TEST_F(CorrectCommand, RejectsAnEmptyExclusionFile) {
+  const std::string empty = (poses_.path() / "exclude.txt").string();
+  std::ofstream(empty) << "# nothing\n";
+  const CommandResult result = run_posekit({"correct", rest_, bent_, "-o", output_, "--exclude", empty});
+  expect_failure_without_output(result, 1);
+  EXPECT_NE(result.err.find("exclude.txt"), std::string::npos) << result.err;
+}
+
+TEST_F(CorrectCommand, RejectsAReferenceWithNan) {
+  const std::string nan_file = (project_test_data() / "malformed" / "nan_coordinate.obj").string();
+  const CommandResult result = run_posekit({"correct", nan_file, bent_, "-o", output_});
+  expect_failure_without_output(result, 1);
+  EXPECT_NE(result.err.find("nan_coordinate.obj"), std::string::npos) << result.err;
+}
+
+TEST_F(CorrectCommand, RejectsParametersOutOfRange) {
+  expect_failure_without_output(run_posekit({"correct", rest_, bent_, "-o", output_, "--key-frames", "1"}), 2);
+  expect_failure_without_output(run_posekit({"correct", rest_, bent_, "-o", output_, "--error-factor", "-1"}), 2);
+  expect_failure_without_output(run_posekit({"correct", rest_, bent_, "-o", output_, "--device", "abacus"}), 1);
 }
 
 }  // namespace

@@ -10,5 +10,6 @@ void add_check_command(CLI::App& app, int& exit_status);
 void add_convert_command(CLI::App& app, int& exit_status);
 void add_generate_command(CLI::App& app, int& exit_status);
 void add_demo_command(CLI::App& app, int& exit_status);
+void add_correct_command(CLI::App& app, int& exit_status);
 
 }  // namespace posekit::cli

@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   int exit_status = 0;
   posekit::cli::add_devices_command(app, exit_status);
   posekit::cli::add_check_command(app, exit_status);
+  posekit::cli::add_correct_command(app, exit_status);
   posekit::cli::add_convert_command(app, exit_status);
   posekit::cli::add_generate_command(app, exit_status);
   posekit::cli::add_demo_command(app, exit_status);

@@ -1,0 +1,27 @@
+// Which vertices constrain the space-time field: all but those near self-intersections that
+// appear on the way from the reference to the target.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace posekit::detail {
+
+struct VertexClassification {
+  std::vector<char> constrained;            ///< one flag per vertex
+  std::vector<int> reference_intersecting;  ///< faces intersecting in the reference (sorted)
+  std::vector<int> target_intersecting;     ///< faces intersecting in the last frame (sorted)
+  /// Unconstrained only because of intersections in the in-between frames, not in the target:
+  /// where the key frames move one part through another.
+  std::vector<char> in_transit;
+  int excluded = 0;                         ///< vertices not constrained
+};
+
+/// Marks as unconstrained the vertices of faces that self-intersect in any of `frames` (the
+/// reference first, the target last), grown by `rings` one-rings, and the `user_excluded` vertices;
+/// then gives the vertices of faces already intersecting in the reference back to the constraints
+/// (those intersections are reproduced, not repaired). `faces` is #F by 3.
+VertexClassification classify_vertices(const std::vector<Eigen::MatrixX3d>& frames, const Eigen::MatrixX3i& faces,
+                                       int rings, const std::vector<int>& user_excluded);
+
+}  // namespace posekit::detail

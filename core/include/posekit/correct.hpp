@@ -1,0 +1,69 @@
+// Pose correction by space-time integration: removes the self-intersections of a target pose
+// without changing its connectivity, by fitting a smooth space-time vector field to the vertex
+// trajectories from a reference pose to the target and integrating the reference through it.
+#pragma once
+
+#include <posekit/device.hpp>
+#include <posekit/rbf_fitting.hpp>
+
+#include <Eigen/Core>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace posekit {
+
+/// Parameters of correct_pose(); the defaults are those of the method's authors.
+struct CorrectionOptions {
+  int key_frames = 11;               ///< poses from reference to target, both included (>= 2)
+  int constraint_times = 13;         ///< s + 1 sample times of each trajectory (>= 2)
+  int exclusion_rings = 1;           ///< rings around intersecting faces left unconstrained (>= 0)
+  int candidates = 1024;             ///< p: worst constraints considered per fitting round
+  int centers_per_round = 128;       ///< m: centers added per fitting round
+  double error_factor = 1e-4;        ///< eps = error_factor * d, d the reference's bounding-box diagonal
+  int max_centers = 30000;           ///< fitting stops here even when eps is not reached
+  bool blocked_update = true;        ///< false: refactorize the whole RBF system every round
+  std::vector<int> excluded_vertices;  ///< extra vertices kept out of the constraints
+  Rk45Options integration;           ///< the RK45 controls (t from 0 to 1 in normalized space)
+  bool fallback = true;              ///< restore target regions the field cannot reach (see report)
+};
+
+/// Wall time of each stage, in seconds.
+struct CorrectionTimes {
+  double normalization = 0, key_frames = 0, classification = 0, constraints = 0, fitting = 0,
+         integration = 0, verification = 0, total = 0;
+};
+
+/// What correct_pose() did and how well.
+struct CorrectionReport {
+  int vertices = 0;
+  int faces = 0;
+  int excluded_vertices = 0;        ///< vertices kept out of the constraints
+  int constraints = 0;              ///< space-time constraints the field was fitted to
+  RbfFitReport fit;                 ///< rounds, centers, final maximum squared error
+  double fit_tolerance = 0;         ///< eps in normalized units
+  Rk45Summary integration;          ///< steps, rejected steps, failures
+  int reference_intersecting_faces = 0;
+  int target_intersecting_faces = 0;
+  int result_intersecting_faces = 0;
+  int new_intersecting_faces = 0;   ///< in the result but not in the reference
+  int fallback_vertices = 0;        ///< vertices copied from the target (global intersections)
+  std::string fallback_note;        ///< what the fallback did, empty when it did nothing
+  double median_distance_to_target = 0;  ///< in the input's units
+  double max_distance_to_target = 0;
+  double bounding_box_diagonal = 0;      ///< of the reference, in the input's units
+  std::string device;
+  CorrectionTimes seconds;
+};
+
+/// Receives a stage name and its fraction done (0 at its start, 1 at its end).
+using CorrectionProgress = std::function<void(const std::string& stage, double fraction)>;
+
+/// Corrects `target` (#V by 3) against the clean `reference` (#V by 3) sharing the #F by 3 `faces`:
+/// returns the corrected #V by 3 pose. Throws ArgumentError for inconsistent input or options.
+Eigen::MatrixX3d correct_pose(const Eigen::MatrixX3d& reference, const Eigen::MatrixX3d& target,
+                              const Eigen::MatrixX3i& faces, Device& device,
+                              const CorrectionOptions& options = {}, CorrectionReport* report = nullptr,
+                              const CorrectionProgress& progress = {});
+
+}  // namespace posekit

@@ -1,0 +1,82 @@
+#include <gtest/gtest.h>
+
+#include <posekit/correct.hpp>
+#include <posekit/cpu_device.hpp>
+#include <posekit/demo_shape.hpp>
+#include <posekit/error.hpp>
+#include <posekit/geometry.hpp>
+#include <posekit/self_intersections.hpp>
+
+#include <limits>
+
+
+namespace posekit {
+namespace {
+
+class CorrectPose : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    DemoArmOptions options;
+    options.bend_angles_degrees = {135.0};
+    arm_ = new PoseSet(make_demo_arm(options));
+  }
+  static void TearDownTestSuite() {
+    delete arm_;
+    arm_ = nullptr;
+  }
+  static PoseSet* arm_;
+  std::unique_ptr<Device> device_ = make_cpu_device();
+};
+PoseSet* CorrectPose::arm_ = nullptr;
+
+TEST_F(CorrectPose, DemoArmLosesItsNewIntersections) {
+  ASSERT_GT(self_intersecting_faces(arm_->pose(1), arm_->faces()).size(), 0u);
+  CorrectionReport report;
+  const Eigen::MatrixX3d corrected = correct_pose(arm_->pose(0), arm_->pose(1), arm_->faces(), *device_, {}, &report);
+  ASSERT_EQ(corrected.rows(), arm_->pose(0).rows());
+  EXPECT_EQ(report.new_intersecting_faces, 0);
+  EXPECT_EQ(new_intersecting_faces(self_intersecting_faces(corrected, arm_->faces()),
+                                   self_intersecting_faces(arm_->pose(0), arm_->faces()))
+                .size(),
+            0u);
+  EXPECT_TRUE(report.fit.converged);
+  EXPECT_EQ(report.integration.failures, 0);
+  EXPECT_GT(report.excluded_vertices, 0);
+  // Away from the joint the target is reproduced, within the accuracy the default error bound gives.
+  EXPECT_LT(report.median_distance_to_target, 1e-2 * report.bounding_box_diagonal);
+}
+
+TEST_F(CorrectPose, CleanTargetIsReproduced) {
+  DemoArmOptions options;
+  options.bend_angles_degrees = {45.0};
+  const PoseSet gentle = make_demo_arm(options);
+  CorrectionReport report;
+  const Eigen::MatrixX3d corrected = correct_pose(gentle.pose(0), gentle.pose(1), gentle.faces(), *device_, {}, &report);
+  EXPECT_EQ(report.excluded_vertices, 0);
+  EXPECT_EQ(report.result_intersecting_faces, 0);
+  EXPECT_LT(report.max_distance_to_target, 1e-2 * report.bounding_box_diagonal);
+  EXPECT_LT(report.median_distance_to_target, 1e-3 * report.bounding_box_diagonal);
+}
+
+TEST_F(CorrectPose, RejectsBadInput) {
+  const Eigen::MatrixX3d fewer = arm_->pose(1).topRows(100);
+  EXPECT_THROW(correct_pose(arm_->pose(0), fewer, arm_->faces(), *device_), ArgumentError);
+  Eigen::MatrixX3d with_nan = arm_->pose(0);
+  with_nan(7, 1) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(correct_pose(with_nan, arm_->pose(1), arm_->faces(), *device_), ArgumentError);
+  CorrectionOptions options;
+  options.key_frames = 1;
+  EXPECT_THROW(correct_pose(arm_->pose(0), arm_->pose(1), arm_->faces(), *device_, options), ArgumentError);
+  options = {};
+  options.exclusion_rings = -1;
+  EXPECT_THROW(correct_pose(arm_->pose(0), arm_->pose(1), arm_->faces(), *device_, options), ArgumentError);
+  options = {};
+  options.excluded_vertices = {static_cast<int>(arm_->vertex_count())};
+  EXPECT_THROW(correct_pose(arm_->pose(0), arm_->pose(1), arm_->faces(), *device_, options), ArgumentError);
+  options = {};
+  options.error_factor = 0.0;
+  EXPECT_THROW(correct_pose(arm_->pose(0), arm_->pose(1), arm_->faces(), *device_, options), ArgumentError);
+}
+
+}  // namespace
+}  // namespace posekit

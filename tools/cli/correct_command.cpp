@@ -1,0 +1,191 @@
+#include "cli_common.hpp"
+#include "commands.hpp"
+#include "progress_line.hpp"
+
+#include <posekit/correct.hpp>
+#include <posekit/device_registry.hpp>
+#include <posekit/error.hpp>
+#include <posekit/mesh_io.hpp>
+
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+namespace posekit::cli {
+namespace {
+
+struct CorrectCommandOptions {
+  std::string reference;
+  std::string target;
+  std::string output;
+  std::string device = "auto";
+  std::string report;
+  std::string exclude;
+  bool full_refactorization = false;
+  bool no_fallback = false;
+  CorrectionOptions correction;
+};
+
+// Vertex indices separated by white space; '#' starts a comment.
+std::vector<int> read_vertex_list(const std::string& file, int vertex_count) {
+  std::ifstream stream(file);
+  if (!stream) throw InputError(file, 0, "cannot open the exclusion file");
+  std::vector<int> vertices;
+  std::string line;
+  long line_number = 0;
+  while (std::getline(stream, line)) {
+    ++line_number;
+    line = line.substr(0, line.find('#'));
+    std::istringstream words(line);
+    std::string word;
+    while (words >> word) {
+      size_t used = 0;
+      long long index = -1;
+      try {
+        index = std::stoll(word, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != word.size()) throw InputError(file, line_number, "'" + word + "' is not a vertex index");
+      if (index < 0 || index >= vertex_count) {
+        throw InputError(file, line_number, "vertex index " + word + " is outside [0, " + std::to_string(vertex_count) + ")");
+      }
+      vertices.push_back(static_cast<int>(index));
+    }
+  }
+  if (vertices.empty()) throw InputError(file, 0, "the exclusion file lists no vertex");
+  return vertices;
+}
+
+nlohmann::json to_json(const CorrectionReport& report) {
+  nlohmann::json rounds = nlohmann::json::array();
+  for (const RbfFitRound& round : report.fit.rounds) {
+    rounds.push_back({{"centers", round.centers},
+                      {"max_squared_error", round.max_squared_error},
+                      {"assembly_seconds", round.assembly_seconds},
+                      {"factorization_seconds", round.factorization_seconds},
+                      {"evaluation_seconds", round.evaluation_seconds}});
+  }
+  return {
+      {"device", report.device},
+      {"vertices", report.vertices},
+      {"faces", report.faces},
+      {"excluded_vertices", report.excluded_vertices},
+      {"constraints", report.constraints},
+      {"fit",
+       {{"rounds", report.fit.rounds.size()},
+        {"centers", report.fit.centers},
+        {"max_squared_error", report.fit.max_squared_error},
+        {"tolerance", report.fit_tolerance},
+        {"converged", report.fit.converged},
+        {"per_round", rounds}}},
+      {"rk45",
+       {{"accepted_steps", report.integration.accepted_steps},
+        {"rejected_steps", report.integration.rejected_steps},
+        {"rhs_evaluations", report.integration.rhs_evaluations},
+        {"failures", report.integration.failures}}},
+      {"intersecting_faces",
+       {{"reference", report.reference_intersecting_faces},
+        {"target", report.target_intersecting_faces},
+        {"result", report.result_intersecting_faces},
+        {"new_in_result", report.new_intersecting_faces}}},
+      {"fallback", {{"vertices", report.fallback_vertices}, {"note", report.fallback_note}}},
+      {"distance_to_target",
+       {{"median", report.median_distance_to_target},
+        {"max", report.max_distance_to_target},
+        {"bounding_box_diagonal", report.bounding_box_diagonal}}},
+      {"seconds",
+       {{"normalization", report.seconds.normalization},
+        {"key_frames", report.seconds.key_frames},
+        {"classification", report.seconds.classification},
+        {"constraints", report.seconds.constraints},
+        {"fitting", report.seconds.fitting},
+        {"integration", report.seconds.integration},
+        {"verification", report.seconds.verification},
+        {"total", report.seconds.total}}},
+  };
+}
+
+void run_correct(CorrectCommandOptions options) {
+  std::vector<std::string> warnings;
+  const Mesh reference = read_mesh(options.reference, &warnings);
+  const Mesh target = read_mesh(options.target, &warnings);
+  check_same_connectivity(reference, options.reference, target, options.target);
+  print_warnings(warnings);
+  if (!options.exclude.empty()) {
+    options.correction.excluded_vertices = read_vertex_list(options.exclude, static_cast<int>(reference.vertices.rows()));
+  }
+  options.correction.blocked_update = !options.full_refactorization;
+  options.correction.fallback = !options.no_fallback;
+  std::unique_ptr<Device> device = create_device(options.device);
+
+  CorrectionReport report;
+  ProgressLine progress("correct");
+  const Eigen::MatrixX3d corrected = correct_pose(reference.vertices, target.vertices, reference.faces, *device,
+                                                  options.correction, &report, progress.callback());
+  progress.finish();
+  write_mesh(options.output, Mesh{corrected, reference.faces});
+  if (!options.report.empty()) write_text_atomically(options.report, to_json(report).dump(2) + "\n");
+
+  std::cout << std::fixed << std::setprecision(2) << options.output << ": intersecting faces "
+            << report.target_intersecting_faces << " in the target, " << report.result_intersecting_faces
+            << " in the result (" << report.new_intersecting_faces << " not in the reference); " << report.fit.centers
+            << " centers, " << report.seconds.total << " s on " << report.device << "\n";
+  if (!report.fit.converged) {
+    std::cerr << "posekit: warning: the field did not reach the error bound within " << options.correction.max_centers
+              << " centers\n";
+  }
+  if (!report.fallback_note.empty()) std::cerr << "posekit: note: " << report.fallback_note << "\n";
+}
+
+}  // namespace
+
+void add_correct_command(CLI::App& app, int& exit_status) {
+  auto options = std::make_shared<CorrectCommandOptions>();
+  CorrectionOptions& c = options->correction;
+  auto* command = app.add_subcommand(
+      "correct", "Remove the self-intersections of TARGET by space-time integration from the clean REFERENCE");
+  command->add_option("REFERENCE", options->reference, "Clean reference pose")->required();
+  command->add_option("TARGET", options->target, "Pose to correct, same connectivity")->required();
+  command->add_option("-o,--output", options->output, "Corrected pose (OBJ, OFF or PLY)")->required();
+  command->add_option("--device", options->device, "Compute device: auto, cpu, opencl, vulkan or cuda")
+      ->capture_default_str();
+  command->add_option("--report", options->report, "Write a JSON report to this file");
+  command->add_option("--exclude", options->exclude,
+                      "File of vertex indices to keep out of the constraints (white-space separated)");
+  command->add_option("--key-frames", c.key_frames, "Key frames from reference to target, both included")
+      ->check(CLI::Range(2, 1000))
+      ->capture_default_str();
+  command->add_option("--constraint-times", c.constraint_times, "Sample times per trajectory (s + 1)")
+      ->check(CLI::Range(2, 1000))
+      ->capture_default_str();
+  command->add_option("--exclusion-rings", c.exclusion_rings, "Rings around intersecting faces left unconstrained")
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
+  command->add_option("--candidates", c.candidates, "p: worst constraints considered per fitting round")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  command->add_option("--centers-per-round", c.centers_per_round, "m: centers added per fitting round")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  command->add_option("--error-factor", c.error_factor, "eps = factor * bounding-box diagonal")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command->add_option("--max-centers", c.max_centers, "Upper bound on the number of centers")
+      ->check(CLI::Range(17, 10000000))
+      ->capture_default_str();
+  command->add_option("--rtol", c.integration.relative_tolerance, "RK45 relative tolerance")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  command->add_option("--atol", c.integration.absolute_tolerance, "RK45 absolute tolerance")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command->add_flag("--full-refactorization", options->full_refactorization,
+                    "Refactorize the whole RBF system every round instead of the blocked update");
+  command->add_flag("--no-fallback", options->no_fallback,
+                    "Keep integrated regions even where the key frames pass one part through another");
+  command->callback([options, &exit_status] { exit_status = run_guarded([&] { run_correct(*options); }); });
+}
+
+}  // namespace posekit::cli
