@@ -5,7 +5,6 @@
 #include <nanoflann.hpp>
 
 #include <algorithm>
-#include <cstdlib>
 #include <functional>
 #include <limits>
 #include <string>
@@ -81,6 +80,49 @@ std::vector<Index> spread_centers(const Points4& positions, Index count, double 
   return chosen;
 }
 
+namespace {
+
+// Constraints that are not centers and still miss the tolerance: the `candidates` worst of them,
+// worst first; ties by index so that the choice does not depend on the sort.
+std::vector<Index> worst_candidates(const Eigen::VectorXd& squared_errors,
+                                    const std::vector<bool>& is_center,
+                                    const CenterCandidates& selection) {
+  std::vector<Index> pool;
+  for (Index i = 0; i < squared_errors.size(); ++i) {
+    if (!is_center[static_cast<std::size_t>(i)] &&
+        squared_errors(i) >= selection.max_squared_error) {
+      pool.push_back(i);
+    }
+  }
+  const std::size_t kept = std::min(pool.size(), static_cast<std::size_t>(std::max(selection.candidates, 0)));
+  std::partial_sort(pool.begin(), pool.begin() + static_cast<std::ptrdiff_t>(kept), pool.end(),
+                    [&](Index a, Index b) {
+                      return squared_errors(a) > squared_errors(b) ||
+                             (squared_errors(a) == squared_errors(b) && a < b);
+                    });
+  pool.resize(kept);
+  return pool;
+}
+
+// Squared distance from each candidate to its nearest center (infinity when there is none).
+std::vector<double> squared_distances_to_centers(const Points4& positions,
+                                                 const std::vector<Index>& candidates,
+                                                 const Points4& centers) {
+  std::vector<double> nearest(candidates.size(), std::numeric_limits<double>::infinity());
+  if (centers.rows() == 0) return nearest;
+  const CenterTree tree(4, std::cref(centers), 16);
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    const Eigen::RowVector4d query = positions.row(candidates[k]);
+    Index neighbour = 0;
+    double distance = 0;
+    tree.query(query.data(), 1, &neighbour, &distance);
+    nearest[k] = distance;
+  }
+  return nearest;
+}
+
+}  // namespace
+
 std::vector<Index> select_new_centers(const Points4& positions,
                                       const Eigen::VectorXd& squared_errors,
                                       const std::vector<bool>& is_center, const Points4& centers,
@@ -91,57 +133,31 @@ std::vector<Index> select_new_centers(const Points4& positions,
                         std::to_string(squared_errors.size()) + " errors and " +
                         std::to_string(is_center.size()) + " center flags");
   }
-  std::vector<Index> pool;
-  for (Index i = 0; i < count; ++i) {
-    if (!is_center[static_cast<std::size_t>(i)] &&
-        (std::getenv("PK_ALL") ? true : squared_errors(i) >= selection.max_squared_error)) {
-      pool.push_back(i);
-    }
-  }
-  if (pool.empty() || selection.count <= 0 || selection.candidates <= 0) return {};
-
-  // The p worst, worst first; ties by index so that the choice does not depend on the sort.
-  const std::size_t kept = std::min(pool.size(), static_cast<std::size_t>(selection.candidates));
-  std::partial_sort(pool.begin(), pool.begin() + static_cast<std::ptrdiff_t>(kept), pool.end(),
-                    [&](Index a, Index b) {
-                      return squared_errors(a) > squared_errors(b) ||
-                             (squared_errors(a) == squared_errors(b) && a < b);
-                    });
-  pool.resize(kept);
-
+  const std::vector<Index> candidates = worst_candidates(squared_errors, is_center, selection);
   // nearest[k]: squared distance from candidate k to the closest center, existing or chosen.
-  std::vector<double> nearest(kept, std::numeric_limits<double>::infinity());
-  if (centers.rows() > 0) {
-    const CenterTree tree(4, std::cref(centers), 16);
-    for (std::size_t k = 0; k < kept; ++k) {
-      const Eigen::RowVector4d query = positions.row(pool[k]);
-      Index neighbour = 0;
-      double distance = 0;
-      tree.query(query.data(), 1, &neighbour, &distance);
-      nearest[k] = distance;
-    }
-  }
-
+  std::vector<double> nearest = squared_distances_to_centers(positions, candidates, centers);
   const double coincident = selection.min_separation * selection.min_separation;
-  std::vector<bool> taken(kept, false);
+  std::vector<bool> available(candidates.size());
+  for (std::size_t k = 0; k < candidates.size(); ++k) available[k] = nearest[k] > coincident;
+
   std::vector<Index> chosen;
   while (static_cast<int>(chosen.size()) < selection.count) {
-    std::size_t best = kept;
-    for (std::size_t k = 0; k < kept; ++k) {
-      if (taken[k] || !(nearest[k] > coincident)) continue;
-      // The first pick is the worst fitted candidate; later picks the one farthest from all.
-      if (chosen.empty()) {
+    // The first pick is the worst fitted candidate; each later one the farthest from all centers.
+    std::size_t best = candidates.size();
+    for (std::size_t k = 0; k < candidates.size(); ++k) {
+      if (available[k] && (best == candidates.size() || nearest[k] > nearest[best])) {
         best = k;
-        break;
+        if (chosen.empty()) break;
       }
-      if (best == kept || nearest[k] > nearest[best]) best = k;
     }
-    if (best == kept) break;
-    taken[best] = true;
-    chosen.push_back(pool[best]);
-    const Eigen::RowVector4d point = positions.row(pool[best]);
-    for (std::size_t k = 0; k < kept; ++k) {
-      if (!taken[k]) nearest[k] = std::min(nearest[k], squared_distance(positions, pool[k], point));
+    if (best == candidates.size()) break;
+    chosen.push_back(candidates[best]);
+    available[best] = false;
+    const Eigen::RowVector4d point = positions.row(candidates[best]);
+    for (std::size_t k = 0; k < candidates.size(); ++k) {
+      if (!available[k]) continue;
+      nearest[k] = std::min(nearest[k], squared_distance(positions, candidates[k], point));
+      available[k] = nearest[k] > coincident;
     }
   }
   return chosen;

@@ -12,17 +12,8 @@ namespace posekit {
 namespace {
 
 std::vector<std::string> disabled_backends() {
-  std::vector<std::string> names;
   const char* variable = std::getenv("POSEKIT_DISABLE_BACKENDS");
-  if (variable == nullptr) return names;
-  std::stringstream list(variable);
-  std::string name;
-  while (std::getline(list, name, ',')) {
-    name.erase(0, name.find_first_not_of(" \t"));
-    name.erase(name.find_last_not_of(" \t") + 1);
-    if (!name.empty()) names.push_back(name);
-  }
-  return names;
+  return variable == nullptr ? std::vector<std::string>{} : parse_backend_list(variable);
 }
 
 BackendStatus probe(const detail::BackendFactory& factory, const std::vector<std::string>& disabled) {
@@ -54,6 +45,18 @@ int auto_rank(const BackendStatus& status) {
 }
 
 }  // namespace
+
+std::vector<std::string> parse_backend_list(const std::string& comma_separated) {
+  std::vector<std::string> names;
+  std::stringstream list(comma_separated);
+  std::string name;
+  while (std::getline(list, name, ',')) {
+    name.erase(0, name.find_first_not_of(" \t"));
+    name.erase(name.find_last_not_of(" \t") + 1);
+    if (!name.empty()) names.push_back(name);
+  }
+  return names;
+}
 
 const char* to_string(BackendState state) {
   switch (state) {

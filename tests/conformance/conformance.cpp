@@ -1,5 +1,7 @@
 #include "conformance.hpp"
 
+#include <posekit/device_registry.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -165,17 +167,8 @@ std::string sanitize_name(const std::string& name) {
 }
 
 std::vector<std::string> expected_backends() {
-  std::vector<std::string> names;
   const char* variable = std::getenv("POSEKIT_EXPECT_BACKENDS");
-  if (variable == nullptr) return names;
-  std::stringstream list(variable);
-  std::string name;
-  while (std::getline(list, name, ',')) {
-    name.erase(0, name.find_first_not_of(" \t"));
-    name.erase(name.find_last_not_of(" \t") + 1);
-    if (!name.empty()) names.push_back(name);
-  }
-  return names;
+  return variable == nullptr ? std::vector<std::string>{} : parse_backend_list(variable);
 }
 
 }  // namespace posekit::conformance

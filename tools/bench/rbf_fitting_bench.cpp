@@ -65,7 +65,8 @@ Problem lion_sized_problem() {
   for (Index k = 0; k < kVertices; ++k) {
     const double z = 1.0 - 2.0 * (static_cast<double>(k) + 0.5) / static_cast<double>(kVertices);
     const double r = std::sqrt(1.0 - z * z);
-    const Eigen::Vector3d u(r * std::cos(golden * k), r * std::sin(golden * k), z);
+    const double turn = golden * static_cast<double>(k);
+    const Eigen::Vector3d u(r * std::cos(turn), r * std::sin(turn), z);
     const double radius =
         0.6 * (1.0 + 0.2 * std::sin(3.0 * u.x()) * std::cos(2.0 * u.y() + u.z()));
     rest[static_cast<std::size_t>(k)] = radius * u;
@@ -123,7 +124,8 @@ void BM_BlockedUpdate(benchmark::State& state) {
     base.add_centers(centers.middleRows(first, std::min(kCentersPerRound, n - first)));
   }
   const Points4 batch = centers.middleRows(n, kCentersPerRound);
-  double assembly = 0, factorization = 0;
+  double assembly = 0;
+  double factorization = 0;
   for (auto _ : state) {
     state.PauseTiming();
     detail::RbfSystem system = base;
@@ -142,7 +144,8 @@ void BM_FullRefactorization(benchmark::State& state) {
   const auto limit = limit_threads(state.range(1));
   const std::unique_ptr<Device> device = make_cpu_device(static_cast<int>(state.range(1)));
   const Points4 all = spread_centers().topRows(n + kCentersPerRound);
-  double assembly = 0, factorization = 0;
+  double assembly = 0;
+  double factorization = 0;
   for (auto _ : state) {
     detail::RbfSystem system(*device, false);
     const detail::RbfSystemTimes times = system.add_centers(all);
@@ -174,7 +177,9 @@ void BM_Fit(benchmark::State& state) {
   for (auto _ : state) {
     fit_rbf_field(*device, problem().positions, problem().values, options, &report);
   }
-  double assembly = 0, factorization = 0, evaluation = 0;
+  double assembly = 0;
+  double factorization = 0;
+  double evaluation = 0;
   for (const RbfFitRound& round : report.rounds) {
     assembly += round.assembly_seconds;
     factorization += round.factorization_seconds;

@@ -19,6 +19,9 @@ struct BackendStatus {
   DeviceInfo info;       ///< filled when available
 };
 
+/// Backend names from a comma-separated list such as "cpu, opencl" (blanks trimmed, empty names dropped).
+std::vector<std::string> parse_backend_list(const std::string& comma_separated);
+
 /// Returns "available", "unavailable" or "not built".
 const char* to_string(BackendState state);
 
