@@ -132,7 +132,7 @@ Eigen::MatrixX3d correct_pose(const Eigen::MatrixX3d& reference, const Eigen::Ma
   stage("verification", 0.0);
   if (options.fallback) {
     const detail::FallbackResult fallback = detail::restore_unreachable_regions(
-        result_n, target_n, reference_n, faces, classification.in_transit,
+        result_n, target_n, classification.reference_intersecting, faces, classification.in_transit,
         kFallbackDeviation * bounding_box_diagonal(reference_n));
     report.fallback_vertices = fallback.vertices;
     if (fallback.regions > 0 || fallback.rejected_regions > 0) {

@@ -4,6 +4,7 @@
 #include <posekit/topology.hpp>
 
 #include <algorithm>
+#include <optional>
 
 namespace posekit::detail {
 namespace {
@@ -33,12 +34,13 @@ std::vector<std::vector<int>> flagged_regions(const std::vector<char>& flagged, 
 }  // namespace
 
 FallbackResult restore_unreachable_regions(Eigen::MatrixX3d& result, const Eigen::MatrixX3d& target,
-                                           const Eigen::MatrixX3d& reference, const Eigen::MatrixX3i& faces,
-                                           const std::vector<char>& in_transit, double deviation_threshold) {
+                                           const std::vector<int>& reference_intersecting,
+                                           const Eigen::MatrixX3i& faces, const std::vector<char>& in_transit,
+                                           double deviation_threshold) {
   FallbackResult outcome;
   const int vertex_count = static_cast<int>(result.rows());
   const AdjacencyLists neighbours = vertex_neighbours(faces, vertex_count);
-  const std::vector<int> reference_intersecting = self_intersecting_faces(reference, faces);
+  std::optional<size_t> new_faces;  // counted when the first region needs it
   for (const std::vector<int>& region : flagged_regions(in_transit, neighbours)) {
     double deviation = 0.0;
     for (int v : region) deviation = std::max(deviation, (result.row(v) - target.row(v)).norm());
@@ -47,13 +49,15 @@ FallbackResult restore_unreachable_regions(Eigen::MatrixX3d& result, const Eigen
     for (int v : region) candidate.row(v) = target.row(v);
     const std::vector<int> fresh =
         new_intersecting_faces(self_intersecting_faces(candidate, faces), reference_intersecting);
-    const std::vector<int> before =
-        new_intersecting_faces(self_intersecting_faces(result, faces), reference_intersecting);
-    if (fresh.size() > before.size()) {
+    if (!new_faces) {
+      new_faces = new_intersecting_faces(self_intersecting_faces(result, faces), reference_intersecting).size();
+    }
+    if (fresh.size() > *new_faces) {
       ++outcome.rejected_regions;
       continue;
     }
     result = std::move(candidate);
+    new_faces = fresh.size();
     ++outcome.regions;
     outcome.vertices += static_cast<int>(region.size());
   }

@@ -17,9 +17,11 @@ struct FallbackResult {
 /// `in_transit` flags the vertices that were unconstrained only because of intersections in the
 /// in-between key frames (not in the target). Each connected region of them whose integrated
 /// position strays from the target by more than `deviation_threshold` is replaced in `result` by the
-/// target's positions, unless that makes faces intersect that do not intersect in `reference`.
+/// target's positions, unless that adds faces intersecting that are not in `reference_intersecting`
+/// (the sorted intersecting faces of the reference pose).
 FallbackResult restore_unreachable_regions(Eigen::MatrixX3d& result, const Eigen::MatrixX3d& target,
-                                           const Eigen::MatrixX3d& reference, const Eigen::MatrixX3i& faces,
-                                           const std::vector<char>& in_transit, double deviation_threshold);
+                                           const std::vector<int>& reference_intersecting,
+                                           const Eigen::MatrixX3i& faces, const std::vector<char>& in_transit,
+                                           double deviation_threshold);
 
 }  // namespace posekit::detail
