@@ -9,7 +9,7 @@ bash scripts/install-deps.sh
 jobs=$(nproc)
 export CTEST_PARALLEL_LEVEL=${CTEST_PARALLEL_LEVEL:-$jobs}
 # Backends that must be available, not skipped, for the conformance suite to pass.
-export POSEKIT_EXPECT_BACKENDS=${POSEKIT_EXPECT_BACKENDS:-cpu}
+export POSEKIT_EXPECT_BACKENDS=${POSEKIT_EXPECT_BACKENDS:-cpu,opencl,vulkan}
 
 bash scripts/build.sh release
 ctest --preset release

@@ -1,6 +1,6 @@
-// Registry entry of the OpenCL backend. This version discovers devices only: the OpenCL kernels for
-// the three device operations are not part of it, so the backend is reported unavailable.
-#include "device/backend_factory.hpp"
+// Registry entry of the OpenCL backend: available when discovery finds a device with fp64, which is
+// then described without building anything; create() builds the program.
+#include "opencl_device.hpp"
 #include "opencl_discovery.hpp"
 
 namespace posekit::opencl {
@@ -10,16 +10,17 @@ detail::BackendFactory backend_factory() {
   factory.name = "opencl";
   factory.probe = [] {
     BackendStatus status;
-    status.state = BackendState::unavailable;
     const Discovery discovery = discover_device();
     if (!discovery.device) {
+      status.state = BackendState::unavailable;
       status.reason = discovery.reason;
     } else {
-      status.reason = "found " + discovery.device->device_name + " on " + discovery.device->platform_name +
-                      " (fp64), but this build has no OpenCL kernels for the device operations";
+      status.state = BackendState::available;
+      status.info = describe_device(*discovery.device);
     }
     return status;
   };
+  factory.create = [] { return make_opencl_device(); };
   return factory;
 }
 

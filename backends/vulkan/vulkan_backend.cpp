@@ -1,7 +1,10 @@
-// Registry entry of the Vulkan backend. This version discovers devices only: the compute shaders
-// for the three device operations are not part of it, so the backend is reported unavailable.
+// Registry entry of the Vulkan backend: available when a physical device with shaderFloat64 (and
+// the few other things the shaders need) is found; with POSEKIT_VULKAN_VALIDATION set, also only
+// when the validation layer is installed, so that validated runs never go silently unvalidated.
 #include "device/backend_factory.hpp"
+#include "vulkan_device.hpp"
 #include "vulkan_discovery.hpp"
+#include "vulkan_validation.hpp"
 
 namespace posekit::vulkan {
 
@@ -11,14 +14,21 @@ detail::BackendFactory backend_factory() {
   factory.probe = [] {
     BackendStatus status;
     status.state = BackendState::unavailable;
+    if (validation_requested() && !validation_layer_installed()) {
+      status.reason = missing_validation_layer_reason();
+      return status;
+    }
     const Discovery discovery = discover_device();
     if (!discovery.device) {
       status.reason = discovery.reason;
-    } else {
-      status.reason = "found " + discovery.device->device_name + " [" + discovery.device->driver +
-                      "] (shaderFloat64), but this build has no compute shaders for the device operations";
+      return status;
     }
+    status.state = BackendState::available;
+    status.info = describe(*discovery.device);
     return status;
+  };
+  factory.create = []() -> std::unique_ptr<Device> {
+    return std::make_unique<VulkanDevice>(validation_requested());
   };
   return factory;
 }

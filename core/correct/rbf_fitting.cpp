@@ -80,24 +80,48 @@ Points4 rows_of(const Points4& points, const std::vector<Index>& indices) {
   return selected;
 }
 
+Eigen::MatrixX3d center_values(const Eigen::MatrixX3d& values, const std::vector<Index>& center_rows) {
+  Eigen::MatrixX3d selected(static_cast<Index>(center_rows.size()), 3);
+  for (std::size_t k = 0; k < center_rows.size(); ++k) selected.row(static_cast<Index>(k)) = values.row(center_rows[k]);
+  return selected;
+}
+
 }  // namespace
 
 RbfField fit_rbf_field(Device& device, const Points4& positions, const Eigen::MatrixX3d& values,
                        const RbfFitOptions& options, RbfFitReport* report) {
+  RbfFit fit(device, positions, values, options);
+  if (report != nullptr) *report = fit.report();
+  return fit.field();
+}
+
+RbfFit::~RbfFit() = default;
+RbfFit::RbfFit(RbfFit&&) noexcept = default;
+RbfFit& RbfFit::operator=(RbfFit&&) noexcept = default;
+
+RbfField RbfFit::refit(const Eigen::MatrixX3d& values) const {
+  if (values.rows() != constraint_count_) {
+    throw ArgumentError("RbfFit::refit: values has " + std::to_string(values.rows()) + " rows but the fit has " +
+                        std::to_string(constraint_count_) + " constraints");
+  }
+  return system_->solve(center_values(values, center_rows_));
+}
+
+RbfFit::RbfFit(Device& device, const Points4& positions, const Eigen::MatrixX3d& values,
+               const RbfFitOptions& options) {
   validate(positions, values, options);
+  constraint_count_ = positions.rows();
   const Index count = positions.rows();
   const Index max_centers = std::min<Index>(options.max_centers, count);
   const double diagonal =
       (positions.colwise().maxCoeff() - positions.colwise().minCoeff()).norm();
   const double min_separation = kCoincidentFraction * diagonal;
 
-  RbfFitReport local_report;
-  RbfFitReport& out = report != nullptr ? *report : local_report;
-  out = RbfFitReport{};
-
-  detail::RbfSystem system(device, options.blocked_update, max_centers);
+  RbfFitReport& out = report_;
+  system_ = std::make_unique<detail::RbfSystem>(device, options.blocked_update, max_centers);
+  detail::RbfSystem& system = *system_;
   std::vector<bool> is_center(static_cast<std::size_t>(count), false);
-  std::vector<Index> center_indices;  // constraint index of each center, in insertion order
+  std::vector<Index>& center_indices = center_rows_;
 
   // The paper starts from the two most distant constraints. Alone they leave the 15 polynomial
   // terms undetermined (the system is singular below 15 centers), so farthest-point sampling,
@@ -111,7 +135,7 @@ RbfField fit_rbf_field(Device& device, const Points4& positions, const Eigen::Ma
   selection.max_squared_error = options.max_squared_error;
   selection.min_separation = min_separation;
 
-  RbfField field;
+  RbfField& field = field_;
   Eigen::MatrixX3d predicted(count, 3);
   for (;;) {
     RbfFitRound round;
@@ -123,11 +147,7 @@ RbfField fit_rbf_field(Device& device, const Points4& positions, const Eigen::Ma
     round.assembly_seconds = times.assembly;
 
     auto start = std::chrono::steady_clock::now();
-    Eigen::MatrixX3d center_values(static_cast<Index>(center_indices.size()), 3);
-    for (std::size_t k = 0; k < center_indices.size(); ++k) {
-      center_values.row(static_cast<Index>(k)) = values.row(center_indices[k]);
-    }
-    field = system.solve(center_values);
+    field = system.solve(center_values(values, center_indices));
     round.factorization_seconds = times.factorization + seconds_since(start);
 
     start = std::chrono::steady_clock::now();
@@ -157,7 +177,6 @@ RbfField fit_rbf_field(Device& device, const Points4& positions, const Eigen::Ma
     // Every badly fitted constraint left coincides with a center: more centers cannot help.
     if (batch.empty()) break;
   }
-  return field;
 }
 
 }  // namespace posekit

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace posekit::detail {
 
@@ -81,6 +82,7 @@ SpaceTimeConstraints sample_constraints(const VertexTrajectories& trajectories,
       ++row;
     }
   }
+  constraints.vertices = std::move(vertices);
   return constraints;
 }
 

@@ -31,10 +31,12 @@ class VertexTrajectories {
 };
 
 /// Space-time constraints of the vertices marked in `constrained` (one flag per vertex) at
-/// `time_count` evenly spaced times in [0, 1]: positions (x, y, z, t) and velocities.
+/// `time_count` evenly spaced times in [0, 1]: positions (x, y, z, t) and velocities, time by time,
+/// so that row r belongs to vertex vertices[r % vertices.size()].
 struct SpaceTimeConstraints {
   Points4 positions;
   Eigen::MatrixX3d velocities;
+  std::vector<int> vertices;  ///< the constrained vertices, ascending
 };
 SpaceTimeConstraints sample_constraints(const VertexTrajectories& trajectories,
                                         const std::vector<char>& constrained, int time_count);

@@ -1,17 +1,29 @@
-// Benchmarks of the device operations on the CPU backend, at the sizes pose correction meets:
-// ~65,000 constraints against ~2,700 centers, 5,000 vertices integrated through the fitted field.
+// Benchmarks of the device operations at the sizes pose correction meets: ~65,000 constraints
+// against ~2,700 centers, 5,000 vertices integrated through the fitted field.
+//  - BM_RbfEvaluation, BM_RbfAssembly, BM_Rk45Batch: the CPU backend, with every compiled
+//    instruction set and thread count side by side.
+//  - BM_Backend<Operation>/<backend>: the same work on every backend the registry lists as
+//    available here (registered at start-up), so that one run gives the ratios between backends.
+//    Each backend's device is created once, before timing (GPU backends build their programs then).
 //
 // Counters: evaluations/s = points x centers per second of wall time (the kernel phi evaluations);
 // for RK45 the field evaluations per particle and how far the particles moved.
 #include <posekit/cpu_device.hpp>
+#include <posekit/device_registry.hpp>
 
 #include "cpu/cpu_device.hpp"
 #include "cpu/kernel_isa.hpp"
 
 #include <benchmark/benchmark.h>
 
+#include <cstdio>
+#include <exception>
+#include <algorithm>
+#include <map>
+#include <memory>
 #include <random>
 #include <string>
+#include <vector>
 
 namespace posekit {
 namespace {
@@ -120,21 +132,22 @@ BENCHMARK(BM_RbfAssembly)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
-// Arguments: particles, centers. Default Rk45Options (rtol 1e-7, atol 1e-9, t from 0 to 1).
-void BM_Rk45Batch(benchmark::State& state) {
-  const Eigen::Index particles = state.range(0);
-  const Eigen::Index centers = state.range(1);
-  const std::unique_ptr<Device> device = make_cpu_device();
-  const std::unique_ptr<DeviceField> field = device->upload_field(smooth_field(centers, 4));
+// RK45 of `particles` particles through a smooth field of `centers` centers on `device`, with the
+// default Rk45Options (rtol 1e-7, atol 1e-9, t from 0 to 1).
+void run_rk45_batch(benchmark::State& state, Device& device, Eigen::Index particles,
+                    Eigen::Index centers) {
+  const std::unique_ptr<DeviceField> field = device.upload_field(smooth_field(centers, 4));
   std::mt19937_64 engine(5);
   const Eigen::MatrixX3d start = ball_points(engine, particles).leftCols<3>();
-  Eigen::MatrixX3d positions = start;
+  Eigen::MatrixX3d positions = start.topRows(std::min<Eigen::Index>(particles, 64));
+  device.integrate_rk45(*field, positions, Rk45Options());  // untimed first launch, a few particles
+  positions = start;
   Rk45Summary summary;
   for (auto _ : state) {
     state.PauseTiming();
     positions = start;
     state.ResumeTiming();
-    summary = summarize(device->integrate_rk45(*field, positions, Rk45Options()));
+    summary = summarize(device.integrate_rk45(*field, positions, Rk45Options()));
     benchmark::DoNotOptimize(positions.data());
   }
   const auto count = static_cast<double>(particles);
@@ -148,6 +161,12 @@ void BM_Rk45Batch(benchmark::State& state) {
   state.counters["evaluations/s"] = benchmark::Counter(
       static_cast<double>(summary.rhs_evaluations) * static_cast<double>(centers),
       benchmark::Counter::kIsIterationInvariantRate);
+}
+
+// Arguments: particles, centers; the CPU backend with every hardware thread.
+void BM_Rk45Batch(benchmark::State& state) {
+  const std::unique_ptr<Device> device = make_cpu_device();
+  run_rk45_batch(state, *device, state.range(0), state.range(1));
   state.SetLabel(describe(*device));
 }
 BENCHMARK(BM_Rk45Batch)
@@ -156,5 +175,125 @@ BENCHMARK(BM_Rk45Batch)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
+// ---------------------------------------------------------------------------------------------
+// Every available backend
+
+// One device per backend for the whole run; nullptr (with the reason printed) when it cannot be
+// created.
+Device* backend_device(const std::string& backend) {
+  static std::map<std::string, std::unique_ptr<Device>> devices;
+  const auto found = devices.find(backend);
+  if (found != devices.end()) return found->second.get();
+  std::unique_ptr<Device>& device = devices[backend];
+  try {
+    device = create_device(backend);
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "posekit_device_bench: %s skipped: %s\n", backend.c_str(), error.what());
+  }
+  return device.get();
+}
+
+std::string backend_label(const Device& device) {
+  const DeviceInfo info = device.info();
+  return info.backend + ": " + info.name;
+}
+
+void BM_BackendRbfEvaluation(benchmark::State& state, const std::string& backend) {
+  Device* device = backend_device(backend);
+  if (device == nullptr || !device->supports(DeviceOperation::rbf_evaluation)) {
+    state.SkipWithError("backend cannot evaluate here");
+    return;
+  }
+  const Eigen::Index points = state.range(0);
+  const Eigen::Index centers = state.range(1);
+  std::mt19937_64 engine(1);
+  const std::unique_ptr<DeviceField> field = device->upload_field(smooth_field(centers, 2));
+  const Points4 queries = ball_points(engine, points);
+  Eigen::MatrixX3d values(points, 3);
+  // Once untimed: a runtime may finish compiling a kernel on its first launch.
+  device->evaluate_rbf(*field, queries, values);
+  for (auto _ : state) {
+    device->evaluate_rbf(*field, queries, values);
+    benchmark::DoNotOptimize(values.data());
+    benchmark::ClobberMemory();
+  }
+  state.counters["evaluations/s"] = benchmark::Counter(
+      static_cast<double>(points * centers), benchmark::Counter::kIsIterationInvariantRate);
+  state.SetLabel(backend_label(*device));
+}
+
+void BM_BackendRbfAssembly(benchmark::State& state, const std::string& backend) {
+  Device* device = backend_device(backend);
+  if (device == nullptr || !device->supports(DeviceOperation::rbf_assembly)) {
+    state.SkipWithError("backend cannot assemble here");
+    return;
+  }
+  const Eigen::Index points = state.range(0);
+  const Eigen::Index centers = state.range(1);
+  std::mt19937_64 engine(3);
+  const Points4 point_set = ball_points(engine, points);
+  const Points4 center_set = ball_points(engine, centers);
+  Eigen::MatrixXd block = Eigen::MatrixXd::Zero(points, centers + kRbfPolynomialTerms);
+  device->assemble_rbf_block(point_set, center_set, true, block);  // untimed first launch
+  for (auto _ : state) {
+    device->assemble_rbf_block(point_set, center_set, true, block);
+    benchmark::DoNotOptimize(block.data());
+    benchmark::ClobberMemory();
+  }
+  state.counters["evaluations/s"] = benchmark::Counter(
+      static_cast<double>(points * centers), benchmark::Counter::kIsIterationInvariantRate);
+  state.SetLabel(backend_label(*device));
+}
+
+void BM_BackendRk45Batch(benchmark::State& state, const std::string& backend) {
+  Device* device = backend_device(backend);
+  if (device == nullptr || !device->supports(DeviceOperation::rk45_integration)) {
+    state.SkipWithError("backend cannot integrate here");
+    return;
+  }
+  run_rk45_batch(state, *device, state.range(0), state.range(1));
+  state.SetLabel(backend_label(*device));
+}
+
+// The BM_Backend* benchmarks, once per available backend, at the sizes of the CPU ones above.
+void register_backend_benchmarks() {
+  for (const BackendStatus& status : list_backends()) {
+    if (status.state != BackendState::available) continue;
+    const std::string& name = status.name;
+    benchmark::RegisterBenchmark(("BM_BackendRbfEvaluation/" + name).c_str(),
+                                 BM_BackendRbfEvaluation, name)
+        ->ArgNames({"points", "centers"})
+        ->Args({65000, 2700})
+        ->Args({65000, 128})
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
+    benchmark::RegisterBenchmark(("BM_BackendRbfAssembly/" + name).c_str(), BM_BackendRbfAssembly,
+                                 name)
+        ->ArgNames({"points", "centers"})
+        ->Args({65000, 128})
+        ->Args({2700, 2700})
+        ->Args({65000, 2700})
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
+    benchmark::RegisterBenchmark(("BM_BackendRk45Batch/" + name).c_str(), BM_BackendRk45Batch,
+                                 name)
+        ->ArgNames({"particles", "centers"})
+        ->Args({5000, 2700})
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
+  }
+}
+
 }  // namespace
 }  // namespace posekit
+
+// Benchmark's own main, after the backends' benchmarks are registered (they depend on what the
+// registry finds at run time).
+int main(int argc, char** argv) {
+  posekit::register_backend_benchmarks();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -90,11 +90,21 @@ nlohmann::json to_json(const CorrectionReport& report) {
         {"target", report.target_intersecting_faces},
         {"result", report.result_intersecting_faces},
         {"new_in_result", report.new_intersecting_faces}}},
-      {"fallback", {{"vertices", report.fallback_vertices}, {"note", report.fallback_note}}},
+      {"fallback",
+       {{"new_faces_after_integration", report.integrated_new_intersecting_faces},
+        {"regions", report.fallback_regions},
+        {"global_regions", report.fallback_global_regions},
+        {"smoothed_regions", report.fallback_smoothed_regions},
+        {"vertices", report.fallback_vertices},
+        {"note", report.fallback_note}}},
       {"distance_to_target",
        {{"median", report.median_distance_to_target},
         {"max", report.max_distance_to_target},
         {"bounding_box_diagonal", report.bounding_box_diagonal}}},
+      {"time_scale", report.time_scale},
+      {"drift",
+       {{"before", {{"median", report.drift.before.median}, {"max", report.drift.before.max}}},
+        {"after", {{"median", report.drift.after.median}, {"max", report.drift.after.max}}}}},
       {"seconds",
        {{"normalization", report.seconds.normalization},
         {"key_frames", report.seconds.key_frames},
@@ -102,6 +112,7 @@ nlohmann::json to_json(const CorrectionReport& report) {
         {"constraints", report.seconds.constraints},
         {"fitting", report.seconds.fitting},
         {"integration", report.seconds.integration},
+        {"drift_compensation", report.seconds.drift_compensation},
         {"verification", report.seconds.verification},
         {"total", report.seconds.total}}},
   };
@@ -172,6 +183,14 @@ void add_correct_command(CLI::App& app, int& exit_status) {
   command->add_option("--error-factor", c.error_factor, "eps = factor * bounding-box diagonal")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  command->add_option("--time-scale", c.time_scale,
+                      "Weight of time against space in the field's domain (0: the RMS vertex displacement)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  command->add_option("--drift-passes", c.drift_passes,
+                      "Refits that move the constrained vertices' endpoints back onto the target")
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
   command->add_option("--max-centers", c.max_centers, "Upper bound on the number of centers")
       ->check(CLI::Range(17, 10000000))
       ->capture_default_str();
@@ -184,7 +203,7 @@ void add_correct_command(CLI::App& app, int& exit_status) {
   command->add_flag("--full-refactorization", options->full_refactorization,
                     "Refactorize the whole RBF system every round instead of the blocked update");
   command->add_flag("--no-fallback", options->no_fallback,
-                    "Keep integrated regions even where the key frames pass one part through another");
+                    "Keep the integrated result where it has intersections the reference has not");
   command->callback([options, &exit_status] { exit_status = run_guarded([&] { run_correct(*options); }); });
 }
 

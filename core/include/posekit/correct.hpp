@@ -34,13 +34,35 @@ struct CorrectionOptions {
   bool blocked_update = true;        ///< false: refactorize the whole RBF system every round
   std::vector<int> excluded_vertices;  ///< extra vertices kept out of the constraints
   Rk45Options integration = correction_integration_defaults();  ///< RK45 controls, t from 0 to 1
+  /// Time enters the field as time_scale * t (>= 0). The authors weigh time like space (1); 0
+  /// chooses the root mean square vertex displacement (unit-sphere frame) clamped to [0.05, 1],
+  /// which needed up to half the centers on the shared poses.
+  double time_scale = 0.0;
+  /// Refits with each constrained vertex's endpoint drift added to its velocities, then integrates
+  /// again: same centers, two triangular solves and one integration per pass (>= 0).
+  int drift_passes = 1;
   bool fallback = true;              ///< restore target regions the field cannot reach (see report)
 };
 
 /// Wall time of each stage, in seconds.
 struct CorrectionTimes {
   double normalization = 0, key_frames = 0, classification = 0, constraints = 0, fitting = 0,
-         integration = 0, verification = 0, total = 0;
+         integration = 0, drift_compensation = 0, verification = 0, total = 0;
+};
+
+/// Distances from the integrated to the target positions of the constrained vertices, normalized
+/// units (unit sphere).
+struct DriftSummary {
+  double median = 0;
+  double max = 0;
+  /// Of #N by 3 differences; zeros for N = 0.
+  static DriftSummary of(const Eigen::MatrixX3d& differences);
+};
+
+/// Endpoint drift before and after drift compensation.
+struct DriftReport {
+  DriftSummary before;
+  DriftSummary after;
 };
 
 /// What correct_pose() did and how well.
@@ -51,12 +73,18 @@ struct CorrectionReport {
   int constraints = 0;              ///< space-time constraints the field was fitted to
   RbfFitReport fit;                 ///< rounds, centers, final maximum squared error
   double fit_tolerance = 0;         ///< eps in normalized units
-  Rk45Summary integration;          ///< steps, rejected steps, failures
+  double time_scale = 0;            ///< the weight of time used
+  Rk45Summary integration;          ///< steps, rejected steps, failures (of the last integration)
+  DriftReport drift;
   int reference_intersecting_faces = 0;
   int target_intersecting_faces = 0;
   int result_intersecting_faces = 0;
   int new_intersecting_faces = 0;   ///< in the result but not in the reference
-  int fallback_vertices = 0;        ///< vertices copied from the target (global intersections)
+  int integrated_new_intersecting_faces = 0;  ///< new intersecting faces before the fallback
+  int fallback_regions = 0;         ///< regions taken from the target
+  int fallback_global_regions = 0;  ///< of those, where key frames pass one part through another
+  int fallback_smoothed_regions = 0;  ///< small regions smoothed where the target's shape did not help
+  int fallback_vertices = 0;        ///< vertices taken from the target or smoothed
   std::string fallback_note;        ///< what the fallback did, empty when it did nothing
   double median_distance_to_target = 0;  ///< in the input's units
   double max_distance_to_target = 0;

@@ -14,6 +14,7 @@
 #include <posekit/device.hpp>
 
 #include <Eigen/Core>
+#include <memory>
 #include <vector>
 
 namespace posekit {
@@ -52,5 +53,38 @@ struct RbfFitReport {
 /// 20 constraints, and Error when the system turns singular (e.g. all constraints at one time).
 RbfField fit_rbf_field(Device& device, const Points4& positions, const Eigen::MatrixX3d& values,
                        const RbfFitOptions& options, RbfFitReport* report = nullptr);
+
+namespace detail {
+class RbfSystem;
+}
+
+/// The greedy fit of fit_rbf_field() that keeps its centers and factorization, so that the same
+/// centers can interpolate other values at the cost of two triangular solves.
+class RbfFit {
+ public:
+  /// Runs the greedy fit on `device` (which must outlive this object); arguments and exceptions as
+  /// for fit_rbf_field().
+  RbfFit(Device& device, const Points4& positions, const Eigen::MatrixX3d& values, const RbfFitOptions& options);
+  ~RbfFit();
+  RbfFit(RbfFit&&) noexcept;
+  RbfFit& operator=(RbfFit&&) noexcept;
+
+  const RbfField& field() const { return field_; }
+  const RbfFitReport& report() const { return report_; }
+  /// Row of `positions` each center was taken from, in insertion order.
+  const std::vector<Eigen::Index>& center_rows() const { return center_rows_; }
+
+  /// The field with the same centers interpolating `values` (#P by 3, one row per constraint, as
+  /// `values` of the constructor; only the centers' rows are used). Throws ArgumentError on a size
+  /// mismatch and Error when the solution is not finite.
+  RbfField refit(const Eigen::MatrixX3d& values) const;
+
+ private:
+  std::unique_ptr<detail::RbfSystem> system_;
+  std::vector<Eigen::Index> center_rows_;
+  RbfField field_;
+  RbfFitReport report_;
+  Eigen::Index constraint_count_ = 0;
+};
 
 }  // namespace posekit

@@ -76,6 +76,49 @@ TEST_F(CorrectPose, RejectsBadInput) {
   options = {};
   options.error_factor = 0.0;
   EXPECT_THROW(correct_pose(arm_->pose(0), arm_->pose(1), arm_->faces(), *device_, options), ArgumentError);
+  options = {};
+  options.time_scale = -0.5;
+  EXPECT_THROW(correct_pose(arm_->pose(0), arm_->pose(1), arm_->faces(), *device_, options), ArgumentError);
+  options = {};
+  options.time_scale = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(correct_pose(arm_->pose(0), arm_->pose(1), arm_->faces(), *device_, options), ArgumentError);
+  options = {};
+  options.drift_passes = -1;
+  EXPECT_THROW(correct_pose(arm_->pose(0), arm_->pose(1), arm_->faces(), *device_, options), ArgumentError);
+}
+
+TEST_F(CorrectPose, DriftCompensationBringsConstrainedVerticesCloserToTheTarget) {
+  CorrectionOptions options;
+  options.error_factor = 1e-3;  // a coarse field drifts more and fits faster
+  options.drift_passes = 0;
+  CorrectionReport plain;
+  correct_pose(arm_->pose(0), arm_->pose(1), arm_->faces(), *device_, options, &plain);
+  EXPECT_EQ(plain.drift.after.median, plain.drift.before.median);
+  options.drift_passes = 1;
+  CorrectionReport compensated;
+  correct_pose(arm_->pose(0), arm_->pose(1), arm_->faces(), *device_, options, &compensated);
+  EXPECT_EQ(compensated.fit.centers, plain.fit.centers);
+  EXPECT_DOUBLE_EQ(compensated.drift.before.median, plain.drift.before.median);
+  EXPECT_LT(compensated.drift.after.median, 0.8 * plain.drift.after.median);
+  EXPECT_EQ(compensated.new_intersecting_faces, 0);
+}
+
+TEST_F(CorrectPose, TimeScaleChangesTheFieldNotTheOutcome) {
+  CorrectionOptions options;
+  options.error_factor = 1e-3;
+  options.time_scale = 1.0;
+  CorrectionReport equal_weights;
+  correct_pose(arm_->pose(0), arm_->pose(1), arm_->faces(), *device_, options, &equal_weights);
+  options.time_scale = 0.1;
+  CorrectionReport compressed;
+  correct_pose(arm_->pose(0), arm_->pose(1), arm_->faces(), *device_, options, &compressed);
+  EXPECT_EQ(compressed.time_scale, 0.1);
+  EXPECT_NE(compressed.fit.centers, equal_weights.fit.centers);
+  for (const CorrectionReport* report : {&equal_weights, &compressed}) {
+    EXPECT_TRUE(report->fit.converged);
+    EXPECT_EQ(report->new_intersecting_faces, 0);
+    EXPECT_LT(report->median_distance_to_target, 1e-2 * report->bounding_box_diagonal);
+  }
 }
 
 }  // namespace

@@ -116,6 +116,30 @@ TEST_F(RbfFitting, ConvergesOnASmoothFieldWithFarFewerCentersThanConstraints) {
   }
 }
 
+TEST_F(RbfFitting, RefitInterpolatesNewValuesAtTheSameCenters) {
+  const Constraints c = moving_bumpy_sphere(250, 13);
+  RbfFitOptions options;
+  options.candidates = 256;
+  options.centers_per_round = 32;
+  options.max_squared_error = 1e-5 * c.diagonal;
+  const RbfFit fit(*device, c.positions, c.values, options);
+  const RbfField same = fit.refit(c.values);
+  EXPECT_LT((same.weights - fit.field().weights).cwiseAbs().maxCoeff(),
+            1e-12 * fit.field().weights.cwiseAbs().maxCoeff());
+
+  // A constant added to every value is a polynomial term: the refit is exact everywhere.
+  const Eigen::RowVector3d shift(0.25, -0.5, 0.125);
+  const Eigen::MatrixX3d shifted = c.values.rowwise() + shift;
+  const RbfField moved = fit.refit(shifted);
+  ASSERT_EQ(moved.centers.rows(), fit.field().centers.rows());
+  EXPECT_LT((moved.weights - fit.field().weights).cwiseAbs().maxCoeff(),
+            1e-9 * fit.field().weights.cwiseAbs().maxCoeff());
+  EXPECT_NEAR(max_squared_error(*device, moved, c.positions, shifted), fit.report().max_squared_error,
+              1e-9 + 1e-6 * fit.report().max_squared_error);
+  for (const Eigen::Index row : fit.center_rows()) ASSERT_LT(row, c.positions.rows());
+  EXPECT_THROW(fit.refit(c.values.topRows(10)), ArgumentError);
+}
+
 TEST_F(RbfFitting, BlockedAndFullFactorizationGiveTheSameField) {
   const Constraints c = moving_bumpy_sphere(250, 13);
   RbfFitOptions options;
