@@ -83,11 +83,7 @@ RbfSumKernel rbf_sum_kernel(KernelIsa isa) {
 
 void evaluate_rbf(const CpuExecution& execution, const CpuField& field,
                   const Eigen::Ref<const Points4>& points, Eigen::Ref<Eigen::MatrixX3d> values) {
-  if (values.rows() != points.rows()) {
-    throw ArgumentError("evaluate_rbf: values has " + std::to_string(values.rows()) +
-                        " rows but points has " + std::to_string(points.rows()) +
-                        " (values must be #points by 3)");
-  }
+  validate_rbf_values_shape(points.rows(), values);
   const Eigen::Index count = points.rows();
   if (count == 0) return;
   const RbfSumKernel kernel = rbf_sum_kernel(execution.isa);

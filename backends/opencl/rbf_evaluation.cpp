@@ -13,11 +13,7 @@ namespace posekit::opencl {
 
 void evaluate_rbf(OpenClRuntime& runtime, const OpenClField& field,
                   const Eigen::Ref<const Points4>& points, Eigen::Ref<Eigen::MatrixX3d> values) {
-  if (values.rows() != points.rows()) {
-    throw ArgumentError("evaluate_rbf: values has " + std::to_string(values.rows()) +
-                        " rows but points has " + std::to_string(points.rows()) +
-                        " (values must be #points by 3)");
-  }
+  validate_rbf_values_shape(points.rows(), values);
   const Eigen::Index count = points.rows();
   if (count == 0) return;
   // The points' four columns are the larger of the two buffers.

@@ -38,13 +38,7 @@ void VulkanDevice::assemble_rbf_block(const Eigen::Ref<const Points4>& points,
                                       bool with_polynomial, Eigen::Ref<Eigen::MatrixXd> block) {
   const Eigen::Index rows = points.rows();
   const Eigen::Index center_count = centers.rows();
-  const Eigen::Index columns = center_count + (with_polynomial ? kRbfPolynomialTerms : 0);
-  if (block.rows() != rows || block.cols() != columns) {
-    throw ArgumentError("assemble_rbf_block: block is " + std::to_string(block.rows()) + " by " +
-                        std::to_string(block.cols()) + " but must be " + std::to_string(rows) +
-                        " by " + std::to_string(columns) + " (#points by #centers" +
-                        (with_polynomial ? " + 15 polynomial columns)" : ")"));
-  }
+  const Eigen::Index columns = validate_rbf_block_shape(rows, center_count, with_polynomial, block);
   if (rows == 0 || columns == 0) return;
 
   run("assemble_rbf_block", [&] {

@@ -14,11 +14,7 @@ namespace posekit::vulkan {
 
 void VulkanDevice::evaluate_rbf(const DeviceField& field, const Eigen::Ref<const Points4>& points,
                                 Eigen::Ref<Eigen::MatrixX3d> values) {
-  if (values.rows() != points.rows()) {
-    throw ArgumentError("evaluate_rbf: values has " + std::to_string(values.rows()) +
-                        " rows but points has " + std::to_string(points.rows()) +
-                        " (values must be #points by 3)");
-  }
+  validate_rbf_values_shape(points.rows(), values);
   const VulkanField& uploaded = own_field(field, "evaluate_rbf");
   const Eigen::Index count = points.rows();
   if (count == 0) return;

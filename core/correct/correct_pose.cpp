@@ -224,11 +224,9 @@ Eigen::MatrixX3d correct_pose(const Eigen::MatrixX3d& reference, const Eigen::Ma
   report.result_intersecting_faces = static_cast<int>(result_intersecting.size());
   report.new_intersecting_faces = static_cast<int>(
       new_intersecting_faces(result_intersecting, classification.reference_intersecting).size());
-  Eigen::VectorXd distances = (result - target).rowwise().norm();
-  report.max_distance_to_target = distances.maxCoeff();
-  const auto middle = distances.data() + distances.size() / 2;
-  std::nth_element(distances.data(), middle, distances.data() + distances.size());
-  report.median_distance_to_target = *middle;
+  const DriftSummary distance_to_target = DriftSummary::of(result - target);
+  report.max_distance_to_target = distance_to_target.max;
+  report.median_distance_to_target = distance_to_target.median;
   report.seconds.verification = seconds_since(stage_start);
   stage("verification", 1.0);
 

@@ -50,8 +50,8 @@ struct CorrectionTimes {
          integration = 0, drift_compensation = 0, verification = 0, total = 0;
 };
 
-/// Distances from the integrated to the target positions of the constrained vertices, normalized
-/// units (unit sphere).
+/// Median and largest distance between corresponding rows of two poses (in correction reports: the
+/// constrained vertices' endpoint drift, in the unit-sphere frame).
 struct DriftSummary {
   double median = 0;
   double max = 0;

@@ -74,6 +74,14 @@ struct Rk45Summary {
 /// absolute_tolerance <= 0, initial_step <= 0, min_step < 0, max_steps <= 0). Every backend calls it.
 void validate_rk45_options(const Rk45Options& options);
 
+/// Throws ArgumentError unless `block` is #points by (#centers + 15 when with_polynomial), as
+/// Device::assemble_rbf_block needs; returns that column count. Every backend calls it.
+Eigen::Index validate_rbf_block_shape(Eigen::Index point_count, Eigen::Index center_count, bool with_polynomial,
+                                      const Eigen::Ref<Eigen::MatrixXd>& block);
+
+/// Throws ArgumentError unless `values` has one row per point, as Device::evaluate_rbf needs.
+void validate_rbf_values_shape(Eigen::Index point_count, const Eigen::Ref<Eigen::MatrixX3d>& values);
+
 /// Adds up per-particle statistics.
 Rk45Summary summarize(const std::vector<Rk45ParticleStats>& stats);
 
