@@ -8,6 +8,7 @@
 #include <posekit/topology.hpp>
 
 #include "correct/intersection_fallback.hpp"
+#include "correct/target_reproduction.hpp"
 #include "correct/vertex_classification.hpp"
 #include "correct/vertex_trajectories.hpp"
 
@@ -40,10 +41,16 @@ void check_options(const CorrectionOptions& options) {
   require(std::isfinite(options.time_scale) && options.time_scale >= 0.0,
           "time_scale must be finite and >= 0 (0: automatic), got " + std::to_string(options.time_scale));
   require(options.drift_passes >= 0, "drift_passes must be >= 0, got " + std::to_string(options.drift_passes));
+  require(std::isfinite(options.exclusion_window),
+          "exclusion_window must be finite (< 0: whole trajectories), got " + std::to_string(options.exclusion_window));
+  require(options.blend_rings >= 0, "blend_rings must be >= 0, got " + std::to_string(options.blend_rings));
   require(std::isfinite(options.error_factor) && options.error_factor > 0.0,
           "error_factor must be finite and > 0, got " + std::to_string(options.error_factor));
   validate_rk45_options(options.integration);
 }
+
+// Rounds in which reproduction widens what it keeps of the integrated result before it gives up.
+constexpr int kReproductionAttempts = 4;
 
 // Bounds of the automatic time scale: trajectories that hardly move still need time to count, and
 // beyond the authors' equal weighting the fits measured no better.
@@ -78,6 +85,30 @@ void check_pose(const Eigen::MatrixX3d& pose, const char* name) {
       throw ArgumentError(std::string(name) + " vertex " + std::to_string(v) + " has a coordinate that is not finite");
     }
   }
+}
+
+// Which vertices constrain the field at each of the constraint times: all but the unconstrained
+// ones, or, with an exclusion window, all but those near an intersection of a key frame within
+// the window (in key-frame spacings) of that time.
+std::vector<std::vector<char>> constrained_at_times(const detail::VertexClassification& classification,
+                                                    const CorrectionOptions& options) {
+  const auto time_count = static_cast<size_t>(options.constraint_times);
+  const double window = options.exclusion_window;
+  if (window < 0) return std::vector<std::vector<char>>(time_count, classification.constrained);
+  const auto frame_count = static_cast<int>(classification.unconstrained_in_frame.size());
+  const auto vertex_count = classification.constrained.size();
+  std::vector<std::vector<char>> constrained(time_count, std::vector<char>(vertex_count, 1));
+  for (size_t step = 0; step < time_count; ++step) {
+    const double frame_time = static_cast<double>(step) / static_cast<double>(time_count - 1) * (frame_count - 1);
+    for (int frame = 0; frame < frame_count; ++frame) {
+      if (std::abs(frame - frame_time) > window) continue;
+      const std::vector<char>& excluded = classification.unconstrained_in_frame[static_cast<size_t>(frame)];
+      for (size_t v = 0; v < vertex_count; ++v) {
+        if (excluded[v]) constrained[step][v] = 0;
+      }
+    }
+  }
+  return constrained;
 }
 
 }  // namespace
@@ -143,7 +174,7 @@ Eigen::MatrixX3d correct_pose(const Eigen::MatrixX3d& reference, const Eigen::Ma
   stage_start = Clock::now();
   const detail::VertexTrajectories trajectories(std::move(frames));
   const detail::SpaceTimeConstraints constraints =
-      detail::sample_constraints(trajectories, classification.constrained, options.constraint_times);
+      detail::sample_constraints(trajectories, constrained_at_times(classification, options));
   report.constraints = static_cast<int>(constraints.positions.rows());
   report.seconds.constraints = seconds_since(stage_start);
 
@@ -186,11 +217,13 @@ Eigen::MatrixX3d correct_pose(const Eigen::MatrixX3d& reference, const Eigen::Ma
   stage_start = Clock::now();
   stage("drift compensation", 0.0);
   Eigen::MatrixX3d drift = endpoint_drift(result_n, target_n, constraints.vertices);
+  std::vector<int> endpoint_index(static_cast<size_t>(reference.rows()), -1);
+  for (std::size_t k = 0; k < constraints.vertices.size(); ++k) endpoint_index[static_cast<size_t>(constraints.vertices[k])] = static_cast<int>(k);
   report.drift.before = DriftSummary::of(drift);
   for (int pass = 0; pass < options.drift_passes; ++pass) {
-    const auto constrained_count = static_cast<Eigen::Index>(constraints.vertices.size());
     for (Eigen::Index row = 0; row < scaled_velocities.rows(); ++row) {
-      scaled_velocities.row(row) += drift.row(row % constrained_count) / time_scale;
+      const int k = endpoint_index[static_cast<size_t>(constraints.row_vertices[static_cast<size_t>(row)])];
+      if (k >= 0) scaled_velocities.row(row) += drift.row(k) / time_scale;
     }
     result_n = integrate(fit.refit(scaled_velocities));
     drift = endpoint_drift(result_n, target_n, constraints.vertices);
@@ -198,6 +231,35 @@ Eigen::MatrixX3d correct_pose(const Eigen::MatrixX3d& reference, const Eigen::Ma
   report.drift.after = DriftSummary::of(drift);
   report.seconds.drift_compensation = seconds_since(stage_start);
   stage("drift compensation", 1.0);
+
+  stage_start = Clock::now();
+  if (options.reproduction_rings >= 0) {
+    const AdjacencyLists neighbours = vertex_neighbours(faces, static_cast<int>(reference.rows()));
+    const auto new_faces = [&](const Eigen::MatrixX3d& pose) {
+      return new_intersecting_faces(self_intersecting_faces(pose, faces), classification.reference_intersecting);
+    };
+    const std::vector<int> integrated_faces = new_faces(result_n);
+    std::vector<char> kept = classification.near_intersections;
+    report.reproduction_skipped = true;
+    for (int attempt = 0; attempt < kReproductionAttempts; ++attempt) {
+      const Eigen::VectorXd weights =
+          detail::correction_weights(kept, neighbours, options.reproduction_rings, options.blend_rings);
+      Eigen::MatrixX3d reproduced = detail::blend_towards_target(result_n, target_n, weights);
+      // Faces the blend made intersect: there it folds a corrected region onto the target's shape,
+      // so the integrated result is kept around them too and the blend moves away.
+      const std::vector<int> added = new_intersecting_faces(new_faces(reproduced), integrated_faces);
+      if (added.empty()) {
+        result_n = std::move(reproduced);
+        report.reproduced_vertices = static_cast<int>((weights.array() == 0.0).count());
+        report.reproduction_skipped = false;
+        break;
+      }
+      for (int face : added) {
+        for (int c = 0; c < 3; ++c) kept[static_cast<size_t>(faces(face, c))] = 1;
+      }
+    }
+  }
+  report.seconds.reproduction = seconds_since(stage_start);
 
   stage_start = Clock::now();
   stage("verification", 0.0);
@@ -220,6 +282,10 @@ Eigen::MatrixX3d correct_pose(const Eigen::MatrixX3d& reference, const Eigen::Ma
     }
   }
   Eigen::MatrixX3d result = normalization.undo(result_n);
+  // Vertices that are the target's own get its coordinates exactly, not their normalization's round trip.
+  for (Eigen::Index v = 0; v < result.rows(); ++v) {
+    if (result_n.row(v) == target_n.row(v)) result.row(v) = target.row(v);
+  }
   const std::vector<int> result_intersecting = self_intersecting_faces(result, faces);
   report.result_intersecting_faces = static_cast<int>(result_intersecting.size());
   report.new_intersecting_faces = static_cast<int>(

@@ -14,6 +14,7 @@ VertexClassification classify_vertices(const std::vector<Eigen::MatrixX3d>& fram
   VertexClassification result;
   std::vector<char> excluded(static_cast<size_t>(vertex_count), 0);
   std::vector<char> excluded_by_target(static_cast<size_t>(vertex_count), 0);
+  result.unconstrained_in_frame.assign(frames.size(), std::vector<char>(static_cast<size_t>(vertex_count), 0));
   for (size_t frame = 0; frame < frames.size(); ++frame) {
     const std::vector<int> intersecting = self_intersecting_faces(frames[frame], faces);
     const bool is_target = frame + 1 == frames.size();
@@ -22,6 +23,7 @@ VertexClassification classify_vertices(const std::vector<Eigen::MatrixX3d>& fram
     for (int face : intersecting) {
       for (int corner = 0; corner < 3; ++corner) {
         excluded[static_cast<size_t>(faces(face, corner))] = 1;
+        result.unconstrained_in_frame[frame][static_cast<size_t>(faces(face, corner))] = 1;
         if (is_target) excluded_by_target[static_cast<size_t>(faces(face, corner))] = 1;
       }
     }
@@ -39,8 +41,13 @@ VertexClassification classify_vertices(const std::vector<Eigen::MatrixX3d>& fram
   };
   grow(excluded);
   grow(excluded_by_target);
+  for (std::vector<char>& flags : result.unconstrained_in_frame) grow(flags);
+  result.near_intersections = excluded;
   for (int face : result.reference_intersecting) {
-    for (int corner = 0; corner < 3; ++corner) excluded[static_cast<size_t>(faces(face, corner))] = 0;
+    for (int corner = 0; corner < 3; ++corner) {
+      excluded[static_cast<size_t>(faces(face, corner))] = 0;
+      for (std::vector<char>& flags : result.unconstrained_in_frame) flags[static_cast<size_t>(faces(face, corner))] = 0;
+    }
   }
   result.in_transit.resize(static_cast<size_t>(vertex_count));
   for (int v = 0; v < vertex_count; ++v) {
@@ -53,6 +60,8 @@ VertexClassification classify_vertices(const std::vector<Eigen::MatrixX3d>& fram
                           std::to_string(vertex_count) + ")");
     }
     excluded[static_cast<size_t>(vertex)] = 1;
+    result.near_intersections[static_cast<size_t>(vertex)] = 1;
+    for (std::vector<char>& flags : result.unconstrained_in_frame) flags[static_cast<size_t>(vertex)] = 1;
   }
   result.constrained.resize(static_cast<size_t>(vertex_count));
   for (int v = 0; v < vertex_count; ++v) {

@@ -15,6 +15,12 @@ struct VertexClassification {
   /// where the key frames move one part through another.
   std::vector<char> in_transit;
   int excluded = 0;                         ///< vertices not constrained
+  /// Near an intersection in some frame or excluded by the user, reference-intersecting ones too:
+  /// every vertex whose position the field, not the target, has to give.
+  std::vector<char> near_intersections;
+  /// Per key frame, one flag per vertex: near an intersection of that frame (grown by the rings,
+  /// reference-intersecting vertices given back) or excluded by the user.
+  std::vector<std::vector<char>> unconstrained_in_frame;
 };
 
 /// Marks as unconstrained the vertices of faces that self-intersect in any of `frames` (the

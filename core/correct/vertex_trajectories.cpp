@@ -63,27 +63,43 @@ Eigen::Vector3d VertexTrajectories::velocity(int vertex, double t) const {
 }
 
 SpaceTimeConstraints sample_constraints(const VertexTrajectories& trajectories,
-                                        const std::vector<char>& constrained, int time_count) {
+                                        const std::vector<std::vector<char>>& constrained_at) {
+  const auto time_count = static_cast<int>(constrained_at.size());
   if (time_count < 2) throw ArgumentError("constraint times must be at least 2, got " + std::to_string(time_count));
-  std::vector<int> vertices;
-  for (int v = 0; v < trajectories.vertex_count(); ++v) {
-    if (constrained[static_cast<size_t>(v)]) vertices.push_back(v);
-  }
-  const Eigen::Index count = static_cast<Eigen::Index>(vertices.size()) * time_count;
+  const int vertex_count = trajectories.vertex_count();
   SpaceTimeConstraints constraints;
+  for (const std::vector<char>& flags : constrained_at) {
+    if (static_cast<int>(flags.size()) != vertex_count) {
+      throw ArgumentError("constraint flags for " + std::to_string(flags.size()) + " vertices, trajectories of " +
+                          std::to_string(vertex_count));
+    }
+    for (int v = 0; v < vertex_count; ++v) {
+      if (flags[static_cast<size_t>(v)]) constraints.row_vertices.push_back(v);
+    }
+  }
+  const auto count = static_cast<Eigen::Index>(constraints.row_vertices.size());
   constraints.positions.resize(count, 4);
   constraints.velocities.resize(count, 3);
   Eigen::Index row = 0;
   for (int step = 0; step < time_count; ++step) {
     const double t = static_cast<double>(step) / (time_count - 1);
-    for (int vertex : vertices) {
-      constraints.positions.row(row) << trajectories.position(vertex, t).transpose(), t;
-      constraints.velocities.row(row) = trajectories.velocity(vertex, t).transpose();
+    for (int v = 0; v < vertex_count; ++v) {
+      if (!constrained_at[static_cast<size_t>(step)][static_cast<size_t>(v)]) continue;
+      constraints.positions.row(row) << trajectories.position(v, t).transpose(), t;
+      constraints.velocities.row(row) = trajectories.velocity(v, t).transpose();
       ++row;
     }
   }
-  constraints.vertices = std::move(vertices);
+  for (int v = 0; v < vertex_count; ++v) {
+    if (constrained_at.back()[static_cast<size_t>(v)]) constraints.vertices.push_back(v);
+  }
   return constraints;
+}
+
+SpaceTimeConstraints sample_constraints(const VertexTrajectories& trajectories,
+                                        const std::vector<char>& constrained, int time_count) {
+  if (time_count < 2) throw ArgumentError("constraint times must be at least 2, got " + std::to_string(time_count));
+  return sample_constraints(trajectories, std::vector<std::vector<char>>(static_cast<size_t>(time_count), constrained));
 }
 
 }  // namespace posekit::detail

@@ -30,14 +30,21 @@ class VertexTrajectories {
   double spacing_;
 };
 
-/// Space-time constraints of the vertices marked in `constrained` (one flag per vertex) at
-/// `time_count` evenly spaced times in [0, 1]: positions (x, y, z, t) and velocities, time by time,
-/// so that row r belongs to vertex vertices[r % vertices.size()].
+/// Space-time constraints sampled from trajectories: positions (x, y, z, t) and velocities, time by
+/// time, each row belonging to vertex row_vertices[row].
 struct SpaceTimeConstraints {
   Points4 positions;
   Eigen::MatrixX3d velocities;
-  std::vector<int> vertices;  ///< the constrained vertices, ascending
+  std::vector<int> row_vertices;  ///< the vertex of each row
+  std::vector<int> vertices;      ///< the vertices constrained at the last time (t = 1), ascending
 };
+
+/// Constraints at `constrained_at.size()` >= 2 evenly spaced times in [0, 1]: at time i the vertices
+/// flagged in constrained_at[i] (one flag per vertex).
+SpaceTimeConstraints sample_constraints(const VertexTrajectories& trajectories,
+                                        const std::vector<std::vector<char>>& constrained_at);
+
+/// The same vertices, those marked in `constrained`, at each of `time_count` evenly spaced times.
 SpaceTimeConstraints sample_constraints(const VertexTrajectories& trajectories,
                                         const std::vector<char>& constrained, int time_count);
 

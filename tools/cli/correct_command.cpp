@@ -97,6 +97,9 @@ nlohmann::json to_json(const CorrectionReport& report) {
         {"smoothed_regions", report.fallback_smoothed_regions},
         {"vertices", report.fallback_vertices},
         {"note", report.fallback_note}}},
+      {"reproduction",
+       {{"vertices", report.reproduced_vertices},
+        {"skipped", report.reproduction_skipped}}},
       {"distance_to_target",
        {{"median", report.median_distance_to_target},
         {"max", report.max_distance_to_target},
@@ -113,6 +116,7 @@ nlohmann::json to_json(const CorrectionReport& report) {
         {"fitting", report.seconds.fitting},
         {"integration", report.seconds.integration},
         {"drift_compensation", report.seconds.drift_compensation},
+        {"reproduction", report.seconds.reproduction},
         {"verification", report.seconds.verification},
         {"total", report.seconds.total}}},
   };
@@ -190,6 +194,18 @@ void add_correct_command(CLI::App& app, int& exit_status) {
   command->add_option("--drift-passes", c.drift_passes,
                       "Refits that move the constrained vertices' endpoints back onto the target")
       ->check(CLI::Range(0, 100))
+      ->capture_default_str();
+  command->add_option("--exclusion-window", c.exclusion_window,
+                      "Drop only the constraints within this many key-frame spacings of an intersection "
+                      "(< 0: a vertex near one loses its whole trajectory)")
+      ->capture_default_str();
+  command->add_option("--reproduction-rings", c.reproduction_rings,
+                      "Keep the integrated result this many rings around the unconstrained vertices and the "
+                      "target's own positions beyond (< 0: the integrated result everywhere)")
+      ->check(CLI::Range(-1, 1000))
+      ->capture_default_str();
+  command->add_option("--blend-rings", c.blend_rings, "Rings over which the integrated result blends into the target")
+      ->check(CLI::Range(0, 1000))
       ->capture_default_str();
   command->add_option("--max-centers", c.max_centers, "Upper bound on the number of centers")
       ->check(CLI::Range(17, 10000000))

@@ -42,12 +42,25 @@ struct CorrectionOptions {
   /// again: same centers, two triangular solves and one integration per pass (>= 0).
   int drift_passes = 1;
   bool fallback = true;              ///< restore target regions the field cannot reach (see report)
+  /// Which constraints an intersection removes. < 0: a vertex near an intersection in any key frame
+  /// loses its whole trajectory, as the authors do. >= 0: only its constraints within this many
+  /// key-frame spacings of a frame where it is near one; it keeps the rest of its path, which holds
+  /// fast-moving parts in shape, at up to twice the centers.
+  double exclusion_window = -1.0;
+  /// Reproduction of the target: the integrated result is kept within `reproduction_rings` rings of
+  /// the vertices near an intersection in some key frame (the reference's own included) and blended
+  /// into the target over `blend_rings` more; elsewhere the result is the target itself, without the
+  /// field's fitting error and drift. < 0 keeps the integrated pose everywhere (the authors'
+  /// result). Where the blend would make faces intersect, the integrated result is kept around them
+  /// too (up to four rounds; then reproduction is skipped).
+  int reproduction_rings = 3;
+  int blend_rings = 3;               ///< >= 0, see reproduction_rings
 };
 
 /// Wall time of each stage, in seconds.
 struct CorrectionTimes {
   double normalization = 0, key_frames = 0, classification = 0, constraints = 0, fitting = 0,
-         integration = 0, drift_compensation = 0, verification = 0, total = 0;
+         integration = 0, drift_compensation = 0, reproduction = 0, verification = 0, total = 0;
 };
 
 /// Median and largest distance between corresponding rows of two poses (in correction reports: the
@@ -85,6 +98,8 @@ struct CorrectionReport {
   int fallback_global_regions = 0;  ///< of those, where key frames pass one part through another
   int fallback_smoothed_regions = 0;  ///< small regions smoothed where the target's shape did not help
   int fallback_vertices = 0;        ///< vertices taken from the target or smoothed
+  int reproduced_vertices = 0;      ///< vertices given the target's position exactly (0 when skipped)
+  bool reproduction_skipped = false;  ///< every margin tried would have added intersecting faces
   std::string fallback_note;        ///< what the fallback did, empty when it did nothing
   double median_distance_to_target = 0;  ///< in the input's units
   double max_distance_to_target = 0;

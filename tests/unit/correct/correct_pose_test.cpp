@@ -46,6 +46,41 @@ TEST_F(CorrectPose, DemoArmLosesItsNewIntersections) {
   EXPECT_LT(report.median_distance_to_target, 1e-2 * report.bounding_box_diagonal);
 }
 
+TEST_F(CorrectPose, ReproductionGivesTheTargetAwayFromTheCorrectedJoint) {
+  CorrectionOptions options;
+  options.error_factor = 1e-3;
+  options.reproduction_rings = -1;
+  CorrectionReport integrated;
+  const Eigen::MatrixX3d plain = correct_pose(arm_->pose(0), arm_->pose(1), arm_->faces(), *device_, options, &integrated);
+  options.reproduction_rings = 3;
+  CorrectionReport reproduced;
+  const Eigen::MatrixX3d result = correct_pose(arm_->pose(0), arm_->pose(1), arm_->faces(), *device_, options, &reproduced);
+  EXPECT_EQ(integrated.reproduced_vertices, 0);
+  ASSERT_GT(reproduced.reproduced_vertices, arm_->vertex_count() / 2);
+  EXPECT_FALSE(reproduced.reproduction_skipped);
+  int exact = 0;
+  for (Eigen::Index v = 0; v < result.rows(); ++v) exact += result.row(v) == arm_->pose(1).row(v) ? 1 : 0;
+  EXPECT_GE(exact, reproduced.reproduced_vertices);
+  EXPECT_EQ(reproduced.new_intersecting_faces, 0);
+  EXPECT_LT(reproduced.median_distance_to_target, integrated.median_distance_to_target);
+  // The corrected joint itself is the integrated one.
+  EXPECT_GT((result - plain).rowwise().norm().maxCoeff(), 0.0);
+  EXPECT_GT((result - arm_->pose(1)).rowwise().norm().maxCoeff(), 1e-3 * reproduced.bounding_box_diagonal);
+}
+
+TEST_F(CorrectPose, ExclusionWindowKeepsTrajectoriesOutsideTheIntersections) {
+  CorrectionOptions options;
+  options.error_factor = 1e-3;
+  CorrectionReport whole;
+  correct_pose(arm_->pose(0), arm_->pose(1), arm_->faces(), *device_, options, &whole);
+  options.exclusion_window = 1.0;
+  CorrectionReport windowed;
+  correct_pose(arm_->pose(0), arm_->pose(1), arm_->faces(), *device_, options, &windowed);
+  EXPECT_GT(windowed.constraints, whole.constraints);
+  EXPECT_EQ(windowed.new_intersecting_faces, 0);
+  EXPECT_TRUE(windowed.fit.converged);
+}
+
 TEST_F(CorrectPose, CleanTargetIsReproduced) {
   DemoArmOptions options;
   options.bend_angles_degrees = {45.0};
@@ -81,6 +116,12 @@ TEST_F(CorrectPose, RejectsBadInput) {
   EXPECT_THROW(correct_pose(arm_->pose(0), arm_->pose(1), arm_->faces(), *device_, options), ArgumentError);
   options = {};
   options.time_scale = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(correct_pose(arm_->pose(0), arm_->pose(1), arm_->faces(), *device_, options), ArgumentError);
+  options = {};
+  options.blend_rings = -1;
+  EXPECT_THROW(correct_pose(arm_->pose(0), arm_->pose(1), arm_->faces(), *device_, options), ArgumentError);
+  options = {};
+  options.exclusion_window = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(correct_pose(arm_->pose(0), arm_->pose(1), arm_->faces(), *device_, options), ArgumentError);
   options = {};
   options.drift_passes = -1;

@@ -69,6 +69,22 @@ TEST(SampleConstraints, OneRowPerConstrainedVertexAndTime) {
   EXPECT_THROW(sample_constraints(trajectories, {1, 1, 1, 1}, 1), ArgumentError);
 }
 
+TEST(SampleConstraints, EachTimeItsOwnVertices) {
+  std::vector<Eigen::MatrixX3d> frames(3, Eigen::MatrixX3d::Zero(4, 3));
+  frames[2].col(1).setConstant(2.0);
+  const VertexTrajectories trajectories(frames);
+  // Vertex 1 is constrained at the first time only, vertex 3 at the last only.
+  const std::vector<std::vector<char>> constrained_at{{1, 1, 1, 0}, {1, 0, 1, 0}, {1, 0, 1, 1}};
+  const SpaceTimeConstraints constraints = sample_constraints(trajectories, constrained_at);
+  ASSERT_EQ(constraints.positions.rows(), 3 + 2 + 3);
+  EXPECT_EQ(constraints.row_vertices, (std::vector<int>{0, 1, 2, 0, 2, 0, 2, 3}));
+  EXPECT_EQ(constraints.vertices, (std::vector<int>{0, 2, 3}));
+  EXPECT_DOUBLE_EQ(constraints.positions(3, 3), 0.5);
+  EXPECT_DOUBLE_EQ(constraints.positions(7, 1), 2.0);
+  EXPECT_THROW(sample_constraints(trajectories, {{1, 1, 1, 1}}), ArgumentError);
+  EXPECT_THROW(sample_constraints(trajectories, {{1, 1, 1}, {1, 1, 1}}), ArgumentError);
+}
+
 TEST(VertexTrajectories, NeedsTwoFrames) {
   EXPECT_THROW(VertexTrajectories(parabola_frames(1)), ArgumentError);
 }
