@@ -3,7 +3,9 @@
 # of the Vulkan backend on the same GPU when the NVIDIA Vulkan driver is installed):
 #   1. builds the release preset with every core (only the targets below; the Debian packages of
 #      scripts/install-deps.sh must be installed, and nvcc in /usr/local/cuda or CMAKE_CUDA_COMPILER)
-#   2. posekit devices: stops unless cuda is available; records the GPU's fp64 peak
+#   2. posekit devices: stops unless cuda is available (the CUDA 13 runtime needs an NVIDIA driver
+#      of the R580 series or later; an older one is reported as cudaErrorInsufficientDriver);
+#      records the GPU's fp64 peak
 #   3. the conformance suite with POSEKIT_EXPECT_BACKENDS=cpu,cuda (and vulkan), and the CUDA
 #      backend's own tests
 #   4. posekit correct lion-reference -> lion-01 with --device cuda and --device cpu (and vulkan):
