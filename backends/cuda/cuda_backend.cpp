@@ -1,7 +1,7 @@
-// Registry entry of the CUDA backend. This version discovers devices only: the CUDA kernels for the
-// three device operations are not part of it, so the backend is reported unavailable.
+// Registry entry of the CUDA backend: available when discovery finds a GPU this build has kernels
+// for, which is then described without creating a context; create() checks the kernels.
+#include "cuda_device.hpp"
 #include "cuda_discovery.hpp"
-#include "device/backend_factory.hpp"
 
 namespace posekit::cuda {
 
@@ -10,16 +10,17 @@ detail::BackendFactory backend_factory() {
   factory.name = "cuda";
   factory.probe = [] {
     BackendStatus status;
-    status.state = BackendState::unavailable;
     const Discovery discovery = discover_device();
     if (!discovery.device) {
+      status.state = BackendState::unavailable;
       status.reason = discovery.reason;
     } else {
-      status.reason = "found " + discovery.device->device_name + " [" + discovery.device->driver +
-                      "], but this build has no CUDA kernels for the device operations";
+      status.state = BackendState::available;
+      status.info = describe(*discovery.device);
     }
     return status;
   };
+  factory.create = [] { return make_cuda_device(); };
   return factory;
 }
 

@@ -7,7 +7,9 @@
 //    Each backend's device is created once, before timing (GPU backends build their programs then).
 //
 // Counters: evaluations/s = points x centers per second of wall time (the kernel phi evaluations);
-// for RK45 the field evaluations per particle and how far the particles moved.
+// for RK45 the field evaluations per particle and how far the particles moved. The backends' RBF
+// evaluation also reports fp64_flop/s, kFlopsPerTerm per evaluation, for a comparison with a
+// device's fp64 peak (posekit devices prints it for CUDA GPUs).
 #include <posekit/cpu_device.hpp>
 #include <posekit/device_registry.hpp>
 
@@ -54,6 +56,13 @@ RbfField smooth_field(Eigen::Index centers, std::uint64_t seed) {
     field.polynomial.data()[i] = weight(engine);
   return field;
 }
+
+// Double-precision operations of one term w_j phi(|y - c_j|) of the sum as kernel_math.h writes it,
+// a fused multiply-add counted as 2 and the one division as 1: the squared distance 11 (4
+// differences, 1 product, 3 multiply-adds), the logarithm's argument 1, the logarithm 29, phi's two
+// products 2, the three weighted sums 6. nvcc's PTX of the term has these 35 instructions (6 add,
+// 5 sub, 9 mul, 14 fma, 1 div); the division's own Newton steps are not counted.
+constexpr double kFlopsPerTerm = 49.0;
 
 cpu::KernelIsa isa_argument(std::int64_t value) { return static_cast<cpu::KernelIsa>(value); }
 
@@ -219,6 +228,9 @@ void BM_BackendRbfEvaluation(benchmark::State& state, const std::string& backend
   }
   state.counters["evaluations/s"] = benchmark::Counter(
       static_cast<double>(points * centers), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["fp64_flop/s"] =
+      benchmark::Counter(kFlopsPerTerm * static_cast<double>(points * centers),
+                         benchmark::Counter::kIsIterationInvariantRate);
   state.SetLabel(backend_label(*device));
 }
 
