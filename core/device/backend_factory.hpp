@@ -21,6 +21,9 @@ struct BackendFactory {
 /// Every backend known to this build, GPU backends first and cpu last (backends/builtin_backends.cpp).
 std::vector<BackendFactory> builtin_backends();
 
+/// create_device() over the given factories instead of the built-in ones.
+std::unique_ptr<Device> create_device(const std::vector<BackendFactory>& factories, const std::string& name);
+
 /// Status of a backend that this build does not contain.
 BackendStatus not_built_status(const std::string& name, const std::string& reason);
 

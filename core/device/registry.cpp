@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <exception>
 #include <sstream>
+#include <utility>
 
 namespace posekit {
 namespace {
@@ -87,22 +88,31 @@ std::vector<BackendStatus> list_backends() {
 }
 
 std::unique_ptr<Device> create_device(const std::string& name) {
+  return detail::create_device(detail::builtin_backends(), name);
+}
+
+std::unique_ptr<Device> detail::create_device(const std::vector<BackendFactory>& factories, const std::string& name) {
   const std::vector<std::string> disabled = disabled_backends();
-  const std::vector<detail::BackendFactory> factories = detail::builtin_backends();
   if (name == "auto") {
-    const detail::BackendFactory* best = nullptr;
-    int best_rank = 0;
+    std::vector<std::pair<int, const detail::BackendFactory*>> candidates;
     for (const detail::BackendFactory& factory : factories) {
       const BackendStatus status = probe(factory, disabled);
-      if (status.state != BackendState::available) continue;
-      const int rank = auto_rank(status);
-      if (best == nullptr || rank < best_rank) {
-        best = &factory;
-        best_rank = rank;
+      if (status.state == BackendState::available) candidates.emplace_back(auto_rank(status), &factory);
+    }
+    if (candidates.empty()) throw Error("no compute device is available (see 'posekit devices')");
+    std::stable_sort(candidates.begin(), candidates.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    // A device that probes well can still fail to start (a driver out of memory, a lost GPU): then
+    // the next best one is used.
+    std::string failures;
+    for (const auto& [rank, factory] : candidates) {
+      try {
+        return factory->create();
+      } catch (const Error& error) {
+        failures += (failures.empty() ? "" : "; ") + factory->name + ": " + error.what();
       }
     }
-    if (best == nullptr) throw Error("no compute device is available (see 'posekit devices')");
-    return best->create();
+    throw Error("no compute device could be created (" + failures + ")");
   }
   for (const detail::BackendFactory& factory : factories) {
     if (factory.name != name) continue;

@@ -1,7 +1,10 @@
 // The registry: which backends exist, which run here, and how names and POSEKIT_DISABLE_BACKENDS
 // are handled.
+#include <posekit/cpu_device.hpp>
 #include <posekit/device_registry.hpp>
 #include <posekit/error.hpp>
+
+#include "device/backend_factory.hpp"
 
 #include <gtest/gtest.h>
 
@@ -114,6 +117,37 @@ TEST(Registry, EnabledAgainOnceTheVariableIsGone) {
   const std::optional<BackendStatus> cpu = find_backend("cpu");
   ASSERT_TRUE(cpu.has_value());
   EXPECT_EQ(cpu->state, BackendState::available);
+}
+
+// A backend that probes as an available GPU but fails to create its device, and a working CPU one.
+std::vector<detail::BackendFactory> failing_gpu_and_cpu() {
+  detail::BackendFactory gpu;
+  gpu.name = "gpu";
+  gpu.probe = [] {
+    BackendStatus status;
+    status.state = BackendState::available;
+    return status;
+  };
+  gpu.create = []() -> std::unique_ptr<Device> { throw DeviceError("out of device memory"); };
+  detail::BackendFactory cpu;
+  cpu.name = "cpu";
+  cpu.probe = gpu.probe;
+  cpu.create = [] { return make_cpu_device(); };
+  return {gpu, cpu};
+}
+
+TEST(Registry, AutoFallsBackWhenTheBestDeviceFailsToStart) {
+  const std::vector<detail::BackendFactory> factories = failing_gpu_and_cpu();
+  const std::unique_ptr<Device> device = detail::create_device(factories, "auto");
+  ASSERT_NE(device, nullptr);
+  EXPECT_EQ(device->info().backend, "cpu");
+  EXPECT_THROW(detail::create_device(factories, "gpu"), DeviceError);
+  try {
+    detail::create_device({factories.front()}, "auto");
+    FAIL() << "created a device from a failing backend";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("gpu: out of device memory"), std::string::npos) << error.what();
+  }
 }
 
 TEST(Registry, StatesHaveNames) {
