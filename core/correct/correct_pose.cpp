@@ -290,9 +290,17 @@ Eigen::MatrixX3d correct_pose(const Eigen::MatrixX3d& reference, const Eigen::Ma
   report.result_intersecting_faces = static_cast<int>(result_intersecting.size());
   report.new_intersecting_faces = static_cast<int>(
       new_intersecting_faces(result_intersecting, classification.reference_intersecting).size());
-  const DriftSummary distance_to_target = DriftSummary::of(result - target);
+  const Eigen::MatrixX3d difference = result - target;
+  const DriftSummary distance_to_target = DriftSummary::of(difference);
   report.max_distance_to_target = distance_to_target.max;
   report.median_distance_to_target = distance_to_target.median;
+  // The same over the vertices near intersections alone: how far the correction moved them.
+  std::vector<Eigen::Index> near_rows;
+  for (size_t v = 0; v < classification.near_intersections.size(); ++v) {
+    if (classification.near_intersections[v]) near_rows.push_back(static_cast<Eigen::Index>(v));
+  }
+  report.near_intersection_vertices = static_cast<int>(near_rows.size());
+  report.median_distance_near_intersections = DriftSummary::of(difference(near_rows, Eigen::all)).median;
   report.seconds.verification = seconds_since(stage_start);
   stage("verification", 1.0);
 

@@ -103,6 +103,8 @@ nlohmann::json to_json(const CorrectionReport& report) {
       {"distance_to_target",
        {{"median", report.median_distance_to_target},
         {"max", report.max_distance_to_target},
+        {"near_intersection_vertices", report.near_intersection_vertices},
+        {"median_near_intersections", report.median_distance_near_intersections},
         {"bounding_box_diagonal", report.bounding_box_diagonal}}},
       {"time_scale", report.time_scale},
       {"drift",

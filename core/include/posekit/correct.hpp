@@ -103,6 +103,8 @@ struct CorrectionReport {
   std::string fallback_note;        ///< what the fallback did, empty when it did nothing
   double median_distance_to_target = 0;  ///< in the input's units
   double max_distance_to_target = 0;
+  int near_intersection_vertices = 0;    ///< vertices near an intersection in some key frame
+  double median_distance_near_intersections = 0;  ///< of those alone, in the input's units
   double bounding_box_diagonal = 0;      ///< of the reference, in the input's units
   std::string device;
   CorrectionTimes seconds;

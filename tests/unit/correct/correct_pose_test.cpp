@@ -63,6 +63,8 @@ TEST_F(CorrectPose, ReproductionGivesTheTargetAwayFromTheCorrectedJoint) {
   EXPECT_GE(exact, reproduced.reproduced_vertices);
   EXPECT_EQ(reproduced.new_intersecting_faces, 0);
   EXPECT_LT(reproduced.median_distance_to_target, integrated.median_distance_to_target);
+  EXPECT_GT(reproduced.near_intersection_vertices, 0);
+  EXPECT_GT(reproduced.median_distance_near_intersections, reproduced.median_distance_to_target);
   // The corrected joint itself is the integrated one.
   EXPECT_GT((result - plain).rowwise().norm().maxCoeff(), 0.0);
   EXPECT_GT((result - arm_->pose(1)).rowwise().norm().maxCoeff(), 1e-3 * reproduced.bounding_box_diagonal);
