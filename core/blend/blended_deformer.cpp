@@ -225,6 +225,7 @@ void BlendedDeformer::build(const PoseSet& examples, const Eigen::MatrixXd* skin
   s.report.full_atoms = full.atom_count();
   s.report.atoms = n_atoms;
   s.report.clusters = nc;
+  s.report.reference_area = area;
   s.report.seconds.total = seconds_since(start);
 }
 

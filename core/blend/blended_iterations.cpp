@@ -107,6 +107,10 @@ Eigen::MatrixX3d BlendedDeformer::State::initial_solve(const Eigen::MatrixX3d& r
   return t;
 }
 
+double BlendedDeformer::State::closed_form_scale(double dot, double energy) const {
+  return options.estimate_scale ? std::max(dot / energy, kMinimumScale) : 1.0;
+}
+
 namespace {
 
 struct Iterate {
@@ -142,7 +146,8 @@ BlendResult BlendedDeformer::deform(const Eigen::MatrixX3d& targets) const {
   return continued;
 }
 
-BlendResult BlendedDeformer::deform(const Eigen::MatrixX3d& targets, const BlendResult& start_from) const {
+BlendResult BlendedDeformer::deform(const Eigen::MatrixX3d& targets, const BlendResult& start_from,
+                                    int average_iterations, int minimal_iterations) const {
   const State& s = *state_;
   const Clock::time_point start = Clock::now();
   if (start_from.transformations.rows() != s.atom_count()) {
@@ -164,9 +169,11 @@ BlendResult BlendedDeformer::deform(const Eigen::MatrixX3d& targets, const Blend
   std::vector<Eigen::Matrix3d> rotations;
 
   double previous = std::numeric_limits<double>::infinity();
-  for (int iteration = 0; iteration < o.average_iterations; ++iteration) {
+  const int average_count = average_iterations >= 0 ? average_iterations : o.average_iterations;
+  const int minimal_count = minimal_iterations >= 0 ? minimal_iterations : o.minimal_iterations;
+  for (int iteration = 0; iteration < average_count; ++iteration) {
     s.local_step(current.transformations, rotations, dots);
-    const double scale = o.estimate_scale ? std::max(dots.sum() / total_example_energy, kMinimumScale) : 1.0;
+    const double scale = s.closed_form_scale(dots.sum(), total_example_energy);
     const Eigen::VectorXd coefficients = Eigen::VectorXd::Constant(k_count, scale / k_count);
     const Eigen::MatrixX3d side = constraint_side + s.arap_right_side(rotations, coefficients);
     current.transformations = s.global.solve(side);
@@ -182,11 +189,11 @@ BlendResult BlendedDeformer::deform(const Eigen::MatrixX3d& targets, const Blend
   }
 
   previous = std::numeric_limits<double>::infinity();
-  for (int iteration = 0; iteration < o.minimal_iterations; ++iteration) {
+  for (int iteration = 0; iteration < minimal_count; ++iteration) {
     s.local_step(current.transformations, rotations, dots);
     Eigen::VectorXd scales(k_count);
     for (int k = 0; k < k_count; ++k) {
-      scales(k) = o.estimate_scale ? std::max(dots(k) / s.example_energy(k), kMinimumScale) : 1.0;
+      scales(k) = s.closed_form_scale(dots(k), s.example_energy(k));
     }
     Eigen::MatrixXd sides = s.arap_right_sides(rotations, scales);
     for (int k = 0; k < k_count; ++k) sides.middleCols<3>(3 * k) += constraint_side;
@@ -217,7 +224,7 @@ BlendResult BlendedDeformer::deform(const Eigen::MatrixX3d& targets, const Blend
   if (current.rotations.empty()) {
     // No iteration ran: rotations and scale of the starting transformations, for interpolation.
     s.local_step(current.transformations, current.rotations, dots);
-    current.scale = o.estimate_scale ? std::max(dots.sum() / total_example_energy, kMinimumScale) : 1.0;
+    current.scale = s.closed_form_scale(dots.sum(), total_example_energy);
     current.weights = Eigen::VectorXd::Constant(k_count, 1.0 / k_count);
     current.scales = Eigen::VectorXd::Constant(k_count, current.scale);
     current.energy = start_from.iterations.empty() ? std::numeric_limits<double>::quiet_NaN()

@@ -65,6 +65,9 @@ struct BlendedDeformer::State {
   Eigen::MatrixX3d arap_right_side(const std::vector<Eigen::Matrix3d>& rotations, const Eigen::VectorXd& coefficients) const;
   /// The same for each example separately: N by 3K, block k = G_k R_k^T times coefficients(k).
   Eigen::MatrixXd arap_right_sides(const std::vector<Eigen::Matrix3d>& rotations, const Eigen::VectorXd& coefficients) const;
+  /// The closed-form scale, sum <R, S> / sum c_e |e|^2 over the examples concerned (1 when
+  /// options.estimate_scale is off): the minimizer of the energy for fixed rotations and maps.
+  double closed_form_scale(double dot, double energy) const;
   /// The initial transformations from the constraint part of the right side (N by 3), without
   /// rotations: one solve with the initial factors, or elastic-net coordinate descent when
   /// options.sparsity > 0. `energy` receives the initial energy less the constant sum w |p|^2.

@@ -44,23 +44,13 @@ struct Match {
   double distance = std::numeric_limits<double>::infinity();
 };
 
-void check_scan_inputs(const BlendedDeformer& deformer, const Mesh& scan, const std::vector<int>& features,
-                       const Eigen::MatrixX3d& feature_positions, const ScanFitOptions& o) {
+void check_scan_inputs(const Mesh& scan, const ScanFitOptions& o) {
   if (scan.vertices.rows() == 0) throw ArgumentError("the scan has no vertex");
   if (!scan.vertices.allFinite()) throw ArgumentError("the scan has a non-finite coordinate");
   check_face_indices(scan.faces, static_cast<int>(scan.vertices.rows()));
-  if (static_cast<Eigen::Index>(features.size()) != feature_positions.rows()) {
-    throw ArgumentError(std::to_string(features.size()) + " feature vertices but " +
-                        std::to_string(feature_positions.rows()) + " feature positions");
+  if (o.iterations < 0 || o.round_average_iterations < 0 || o.round_minimal_iterations < 0) {
+    throw ArgumentError("scan fit: iteration counts must be >= 0");
   }
-  if (features.empty()) throw ArgumentError("the scan fit needs at least one feature point");
-  for (int v : features) {
-    if (v < 0 || v >= deformer.vertex_count()) {
-      throw ArgumentError("feature vertex " + std::to_string(v) + " is outside [0, " +
-                          std::to_string(deformer.vertex_count()) + ")");
-    }
-  }
-  if (o.iterations < 0) throw ArgumentError("scan fit: iterations must be >= 0");
   if (o.max_scan_points < 1) throw ArgumentError("scan fit: max_scan_points must be >= 1");
   if (!(o.scan_weight > 0.0) || !std::isfinite(o.scan_weight)) throw ArgumentError("scan fit: scan_weight must be > 0");
   if (!(o.max_normal_angle_degrees > 0.0 && o.max_normal_angle_degrees <= 180.0)) {
@@ -73,11 +63,15 @@ void check_scan_inputs(const BlendedDeformer& deformer, const Mesh& scan, const 
 
 }  // namespace
 
-ScanRegistration fit_to_scan(BlendedDeformer& deformer, const Mesh& scan, const std::vector<int>& features,
-                             const Eigen::MatrixX3d& feature_positions, const BlendResult& start,
+ScanRegistration fit_to_scan(BlendedDeformer& deformer, const Mesh& scan, const std::vector<LinearConstraint>& fixed,
+                             const Eigen::MatrixX3d& fixed_targets, const BlendResult& start,
                              const ScanFitOptions& options) {
   const Clock::time_point begin = Clock::now();
-  check_scan_inputs(deformer, scan, features, feature_positions, options);
+  check_scan_inputs(scan, options);
+  if (static_cast<Eigen::Index>(fixed.size()) != fixed_targets.rows()) {
+    throw ArgumentError(std::to_string(fixed.size()) + " fixed constraints but " + std::to_string(fixed_targets.rows()) +
+                        " targets");
+  }
   const Eigen::MatrixX3i& faces = deformer.faces();
   const AdjacencyLists faces_of_vertex = vertex_faces(faces, deformer.vertex_count());
   const int scan_count = static_cast<int>(scan.vertices.rows());
@@ -123,9 +117,9 @@ ScanRegistration fit_to_scan(BlendedDeformer& deformer, const Mesh& scan, const 
     ScanFitIteration iteration;
     std::vector<LinearConstraint> constraints;
     std::vector<Eigen::RowVector3d> targets;
-    for (size_t f = 0; f < features.size(); ++f) {
-      constraints.push_back(LinearConstraint::vertex(features[f]));
-      targets.push_back(feature_positions.row(static_cast<Eigen::Index>(f)));
+    for (size_t f = 0; f < fixed.size(); ++f) {
+      constraints.push_back(fixed[f]);
+      targets.push_back(fixed_targets.row(static_cast<Eigen::Index>(f)));
     }
     if (!distances.empty()) {
       std::nth_element(distances.begin(), distances.begin() + distances.size() / 2, distances.end());
@@ -144,7 +138,7 @@ ScanRegistration fit_to_scan(BlendedDeformer& deformer, const Mesh& scan, const 
     Eigen::MatrixX3d target_matrix(static_cast<Eigen::Index>(targets.size()), 3);
     for (size_t r = 0; r < targets.size(); ++r) target_matrix.row(static_cast<Eigen::Index>(r)) = targets[r];
     deformer.set_constraints(constraints);
-    current = deformer.deform(target_matrix, current);
+    current = deformer.deform(target_matrix, current, options.round_average_iterations, options.round_minimal_iterations);
     iteration.energy = current.energy;
     iteration.seconds = std::chrono::duration<double>(Clock::now() - round_start).count();
     registration.iterations.push_back(iteration);
@@ -171,12 +165,12 @@ ScanRegistration fit_to_scan(BlendedDeformer& deformer, const Mesh& scan, const 
 ScanRegistration register_partial_scan(BlendedDeformer& deformer, const Mesh& scan, const std::vector<int>& features,
                                        const Eigen::MatrixX3d& feature_positions, const ScanFitOptions& options) {
   const Clock::time_point begin = Clock::now();
-  check_scan_inputs(deformer, scan, features, feature_positions, options);
-  std::vector<LinearConstraint> constraints;
-  for (int v : features) constraints.push_back(LinearConstraint::vertex(v));
-  deformer.set_constraints(constraints);
-  const BlendResult initial = deformer.deform(feature_positions);
-  ScanRegistration registration = fit_to_scan(deformer, scan, features, feature_positions, initial, options);
+  check_scan_inputs(scan, options);
+  const FeatureConstraints fixed = feature_constraints(deformer, scan, features, feature_positions, options);
+  deformer.set_constraints(fixed.constraints);
+  const BlendResult initial = deformer.deform(fixed.targets);
+  ScanRegistration registration = fit_to_scan(deformer, scan, fixed.constraints, fixed.targets, initial, options);
+  registration.feature_discs = fixed.discs;
   registration.seconds = std::chrono::duration<double>(Clock::now() - begin).count();
   return registration;
 }

@@ -72,6 +72,7 @@ struct BlendSetupReport {
   int full_atoms = 0;  ///< 4mK
   int atoms = 0;       ///< after reduction
   int clusters = 0;
+  double reference_area = 0.0;  ///< surface area of the reference, in the examples' units
   struct {
     double weights = 0, dictionary = 0, clusters = 0, system = 0, total = 0;
   } seconds;
@@ -145,9 +146,11 @@ class BlendedDeformer {
   /// scale): the initial solve without rotations, then average-ARAP and minimal-ARAP iterations.
   /// Throws ArgumentError when the sizes disagree, a target is not finite, or there are no constraints.
   BlendResult deform(const Eigen::MatrixX3d& targets) const;
-  /// The same, continuing from `start` (its transformations and rotations) instead of the initial
-  /// solve: for non-rigid ICP, where the constraints change a little between calls.
-  BlendResult deform(const Eigen::MatrixX3d& targets, const BlendResult& start) const;
+  /// The same, continuing from the transformations of `start` instead of the initial solve: for
+  /// non-rigid ICP, where the constraints change a little between calls. `average_iterations` and
+  /// `minimal_iterations` replace the options' counts when they are >= 0.
+  BlendResult deform(const Eigen::MatrixX3d& targets, const BlendResult& start, int average_iterations = -1,
+                     int minimal_iterations = -1) const;
 
   /// The pose at t in [0, 1] between two deformations of this deformer: rotations interpolated
   /// spherically (per example and cluster), scales and example weights linearly, then one global step

@@ -93,6 +93,34 @@ inline std::vector<int> spread_vertices(const Eigen::MatrixX3d& vertices, int co
   return chosen;
 }
 
+/// A partial scan of `pose`: the faces for which keep(face) holds, their vertices renumbered in
+/// order; `original` receives the pose vertex of every scan vertex.
+template <typename Keep>
+Mesh partial_scan(const Eigen::MatrixX3d& pose, const Eigen::MatrixX3i& faces, Keep keep, std::vector<int>& original) {
+  std::vector<int> index(static_cast<size_t>(pose.rows()), -1);
+  std::vector<Eigen::RowVector3i> kept;
+  original.clear();
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    if (!keep(static_cast<int>(f))) continue;
+    Eigen::RowVector3i face;
+    for (int c = 0; c < 3; ++c) {
+      int& i = index[static_cast<size_t>(faces(f, c))];
+      if (i < 0) {
+        i = static_cast<int>(original.size());
+        original.push_back(faces(f, c));
+      }
+      face(c) = i;
+    }
+    kept.push_back(face);
+  }
+  Mesh scan;
+  scan.vertices.resize(static_cast<Eigen::Index>(original.size()), 3);
+  for (size_t i = 0; i < original.size(); ++i) scan.vertices.row(static_cast<Eigen::Index>(i)) = pose.row(original[i]);
+  scan.faces.resize(static_cast<Eigen::Index>(kept.size()), 3);
+  for (size_t f = 0; f < kept.size(); ++f) scan.faces.row(static_cast<Eigen::Index>(f)) = kept[f];
+  return scan;
+}
+
 /// The largest vertex distance between two poses, over the square root of the area of `truth`.
 inline double max_distortion(const Eigen::MatrixX3d& result, const Eigen::MatrixX3d& truth, const Eigen::MatrixX3i& faces) {
   return (result - truth).rowwise().norm().maxCoeff() / std::sqrt(face_areas(truth, faces).sum());
