@@ -4,6 +4,9 @@
 #include "blend/deformer_state.hpp"
 #include "blend/rotation_fit.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -30,43 +33,70 @@ void BlendedDeformer::State::local_step(const Eigen::MatrixX3d& transformations,
                                         Eigen::VectorXd& dots) const {
   const int blocks = block_count();
   rotations.resize(static_cast<size_t>(blocks));
-  dots = Eigen::VectorXd::Zero(example_count());
-  for (int j = 0; j < blocks; ++j) {
-    // S = T^T G_j as dot products of contiguous columns: a general matrix product would repack G
-    // (the largest array of the iteration) on every call.
-    Eigen::Matrix3d s;
-    for (int b = 0; b < 3; ++b) {
-      const auto column = projected.col(3 * j + b);
-      for (int a = 0; a < 3; ++a) s(a, b) = transformations.col(a).dot(column);
+  std::vector<double> block_dots(static_cast<size_t>(blocks));
+  tbb::parallel_for(tbb::blocked_range<int>(0, blocks, 16), [&](const tbb::blocked_range<int>& range) {
+    for (int j = range.begin(); j < range.end(); ++j) {
+      // S = T^T G_j as dot products of contiguous columns: a general matrix product would repack G
+      // (the largest array of the iteration) on every call.
+      Eigen::Matrix3d s;
+      for (int b = 0; b < 3; ++b) {
+        const auto column = projected.col(3 * j + b);
+        for (int a = 0; a < 3; ++a) s(a, b) = transformations.col(a).dot(column);
+      }
+      const Eigen::Matrix3d r = detail::closest_rotation(s);
+      rotations[static_cast<size_t>(j)] = r;
+      block_dots[static_cast<size_t>(j)] = r.cwiseProduct(s).sum();
     }
-    const Eigen::Matrix3d r = detail::closest_rotation(s);
-    rotations[static_cast<size_t>(j)] = r;
-    dots(j / cluster_count) += r.cwiseProduct(s).sum();
-  }
+  });
+  dots = Eigen::VectorXd::Zero(example_count());
+  for (int j = 0; j < blocks; ++j) dots(j / cluster_count) += block_dots[static_cast<size_t>(j)];
+}
+
+void BlendedDeformer::State::accumulate_blocks(int first, int last, const Eigen::MatrixX3d& stacked,
+                                               Eigen::MatrixX3d& side) const {
+  const int rows = atom_count();
+  const int chunk = std::max(32, (rows + 3) / 4);
+  tbb::parallel_for(0, (rows + chunk - 1) / chunk, [&](int part) {
+    const int top = part * chunk;
+    const int height = std::min(chunk, rows - top);
+    auto out = side.middleRows(top, height);
+    for (int j = first; j < last; ++j) {
+      for (int b = 0; b < 3; ++b) {
+        const auto column = projected.col(3 * j + b).segment(top, height);
+        const int row = 3 * j + b;
+        out.col(0) += stacked(row, 0) * column;
+        out.col(1) += stacked(row, 1) * column;
+        out.col(2) += stacked(row, 2) * column;
+      }
+    }
+  });
 }
 
 Eigen::MatrixX3d BlendedDeformer::State::arap_right_side(const std::vector<Eigen::Matrix3d>& rotations,
                                                          const Eigen::VectorXd& coefficients) const {
   const int blocks = block_count();
-  Eigen::MatrixX3d side = Eigen::MatrixX3d::Zero(atom_count(), 3);
+  Eigen::MatrixX3d stacked(3 * blocks, 3);
   for (int j = 0; j < blocks; ++j) {
-    const Eigen::Matrix3d r = coefficients(j / cluster_count) * rotations[static_cast<size_t>(j)].transpose();
-    accumulate_block(j, r, side);
+    stacked.middleRows<3>(3 * j) = coefficients(j / cluster_count) * rotations[static_cast<size_t>(j)].transpose();
   }
+  Eigen::MatrixX3d side = Eigen::MatrixX3d::Zero(atom_count(), 3);
+  accumulate_blocks(0, blocks, stacked, side);
   return side;
 }
 
 Eigen::MatrixXd BlendedDeformer::State::arap_right_sides(const std::vector<Eigen::Matrix3d>& rotations,
                                                          const Eigen::VectorXd& coefficients) const {
   const int k_count = example_count();
+  const int blocks = block_count();
+  Eigen::MatrixX3d stacked(3 * blocks, 3);
+  for (int j = 0; j < blocks; ++j) {
+    stacked.middleRows<3>(3 * j) = coefficients(j / cluster_count) * rotations[static_cast<size_t>(j)].transpose();
+  }
   Eigen::MatrixXd sides(atom_count(), 3 * k_count);
   Eigen::MatrixX3d side(atom_count(), 3);
   for (int k = 0; k < k_count; ++k) {
     side.setZero();
-    for (int c = 0; c < cluster_count; ++c) {
-      const int j = k * cluster_count + c;
-      accumulate_block(j, coefficients(k) * rotations[static_cast<size_t>(j)].transpose(), side);
-    }
+    accumulate_blocks(k * cluster_count, (k + 1) * cluster_count, stacked, side);
     sides.middleCols<3>(3 * k) = side;
   }
   return sides;
@@ -197,18 +227,24 @@ BlendResult BlendedDeformer::deform(const Eigen::MatrixX3d& targets, const Blend
     }
     Eigen::MatrixXd sides = s.arap_right_sides(rotations, scales);
     for (int k = 0; k < k_count; ++k) sides.middleCols<3>(3 * k) += constraint_side;
-    const Eigen::MatrixXd solutions = s.global.solve(sides);
+    // With Q = L L^T the minimum over T of the energy for example k is c_k - b_k^T Q^-1 b_k
+    // = c_k - |L^-1 b_k|^2: one forward substitution per example decides, and only the chosen one
+    // is solved to the end.
+    Eigen::MatrixXd forward = sides;
+    s.global.matrixL().solveInPlace(forward);
     int best = 0;
     double best_energy = std::numeric_limits<double>::infinity();
     for (int k = 0; k < k_count; ++k) {
-      const double energy = constant + scales(k) * scales(k) * s.example_energy(k) -
-                            solutions.middleCols<3>(3 * k).cwiseProduct(sides.middleCols<3>(3 * k)).sum();
+      const double energy =
+          constant + scales(k) * scales(k) * s.example_energy(k) - forward.middleCols<3>(3 * k).squaredNorm();
       if (energy < best_energy) {
         best_energy = energy;
         best = k;
       }
     }
-    current.transformations = solutions.middleCols<3>(3 * best);
+    Eigen::MatrixX3d solution = forward.middleCols<3>(3 * best);
+    s.global.matrixU().solveInPlace(solution);
+    current.transformations = solution;
     current.energy = best_energy;
     current.rotations = rotations;
     current.weights = Eigen::VectorXd::Zero(k_count);

@@ -52,15 +52,9 @@ struct BlendedDeformer::State {
   /// dots(k) = sum_c <R_kc, S_kc>, which gives the closed-form scale.
   void local_step(const Eigen::MatrixX3d& transformations, std::vector<Eigen::Matrix3d>& rotations,
                   Eigen::VectorXd& dots) const;
-  /// side += G_j m (G_j = the three columns of block j), streaming the columns once.
-  void accumulate_block(int j, const Eigen::Matrix3d& m, Eigen::MatrixX3d& side) const {
-    for (int b = 0; b < 3; ++b) {
-      const auto column = projected.col(3 * j + b);
-      side.col(0) += m(b, 0) * column;
-      side.col(1) += m(b, 1) * column;
-      side.col(2) += m(b, 2) * column;
-    }
-  }
+  /// side += sum over blocks j in [first, last) of G_j m_j (G_j: the three columns of block j, m_j:
+  /// the 3 by 3 matrix at rows 3j of `stacked`), streaming the columns once, rows split over threads.
+  void accumulate_blocks(int first, int last, const Eigen::MatrixX3d& stacked, Eigen::MatrixX3d& side) const;
   /// N by 3 ARAP part of the global step's right side: sum_k coefficients(k) sum_c G_kc R_kc^T.
   Eigen::MatrixX3d arap_right_side(const std::vector<Eigen::Matrix3d>& rotations, const Eigen::VectorXd& coefficients) const;
   /// The same for each example separately: N by 3K, block k = G_k R_k^T times coefficients(k).

@@ -8,6 +8,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -23,6 +24,9 @@ struct Case {
   std::vector<LinearConstraint> constraints;
   Eigen::MatrixX3d targets;
 };
+
+// The machine may be shared: the minimum over repetitions is the number to quote.
+double minimum(const std::vector<double>& values) { return *std::min_element(values.begin(), values.end()); }
 
 std::vector<int> spread_vertices(const Eigen::MatrixX3d& vertices, int count) {
   std::vector<int> chosen;
@@ -109,10 +113,10 @@ void deform(benchmark::State& state, Case* c) {
 }
 
 void BM_DeformHorse(benchmark::State& state) { deform(state, horse(static_cast<int>(state.range(0)))); }
-BENCHMARK(BM_DeformHorse)->Arg(4)->Arg(9)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DeformHorse)->Arg(4)->Arg(9)->Unit(benchmark::kMillisecond)->ComputeStatistics("min", minimum);
 
 void BM_DeformArm(benchmark::State& state) { deform(state, arm()); }
-BENCHMARK(BM_DeformArm)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DeformArm)->Unit(benchmark::kMillisecond)->ComputeStatistics("min", minimum);
 
 // Moving one constraint to another vertex: a rank-one update and a downdate of both factors ...
 void BM_ReplaceConstraintHorse(benchmark::State& state) {
@@ -128,7 +132,7 @@ void BM_ReplaceConstraintHorse(benchmark::State& state) {
   c->deformer->set_constraints(c->constraints);
   report_sizes(state, *c);
 }
-BENCHMARK(BM_ReplaceConstraintHorse)->Arg(4)->Arg(9)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ReplaceConstraintHorse)->Arg(4)->Arg(9)->Unit(benchmark::kMillisecond)->ComputeStatistics("min", minimum);
 
 // ... against factorizing both matrices anew.
 void BM_SetConstraintsHorse(benchmark::State& state) {
@@ -140,7 +144,7 @@ void BM_SetConstraintsHorse(benchmark::State& state) {
   for (auto _ : state) c->deformer->set_constraints(c->constraints);
   report_sizes(state, *c);
 }
-BENCHMARK(BM_SetConstraintsHorse)->Arg(4)->Arg(9)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SetConstraintsHorse)->Arg(4)->Arg(9)->Unit(benchmark::kMillisecond)->ComputeStatistics("min", minimum);
 
 void BM_InterpolateHorse(benchmark::State& state) {
   Case* c = horse(static_cast<int>(state.range(0)));
@@ -153,7 +157,7 @@ void BM_InterpolateHorse(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(c->deformer->interpolate(a, b, 0.5).data());
   report_sizes(state, *c);
 }
-BENCHMARK(BM_InterpolateHorse)->Arg(4)->Arg(9)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_InterpolateHorse)->Arg(4)->Arg(9)->Unit(benchmark::kMillisecond)->ComputeStatistics("min", minimum);
 
 }  // namespace
 }  // namespace posekit

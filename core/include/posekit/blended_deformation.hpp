@@ -46,7 +46,7 @@ struct BlendOptions {
   /// makes every map zero. 0 turns the L1 term off (one solve with the initial factorization).
   double sparsity = 0.0;
   /// Local/global iterations with the average ARAP energy, then with the minimal ARAP energy.
-  int average_iterations = 8;
+  int average_iterations = 4;
   int minimal_iterations = 4;
   /// A stage stops early when an iteration lowers the energy by less than this fraction.
   double tolerance = 1e-5;

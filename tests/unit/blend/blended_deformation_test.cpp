@@ -221,9 +221,11 @@ TEST_F(ArmDeformation, ElasticNetGivesSparserInitialMaps) {
   const auto zero_rows = [](const Eigen::MatrixX3d& t) { return (t.rowwise().squaredNorm().array() == 0.0).count(); };
   EXPECT_EQ(zero_rows(a.transformations), 0);
   EXPECT_GT(zero_rows(b.transformations), b.transformations.rows() / 2);
-  // The iterations from the sparse start reach a good pose too.
+  // The iterations from the sparse start (which meets the constraints less closely than the plain
+  // one) reach a good pose too, given a few more of them.
   BlendOptions full = deformer->options();
   full.sparsity = 0.05;
+  full.average_iterations = 8;
   BlendedDeformer iterated(*examples, full);
   iterated.set_constraints(vertex_constraints(points));
   EXPECT_LT(max_distortion(iterated.deform(positions).vertices, targets->pose(1), examples->faces()), 0.03);
