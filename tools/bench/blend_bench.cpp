@@ -1,5 +1,5 @@
 // Example-based deformation after precomputation: one deformation from 10 point constraints (the
-// interactive case), one constraint replaced by a rank-one update against a full refactorization,
+// interactive case) and its final vertex evaluation, one constraint replaced by a rank-one update against a full refactorization,
 // one interpolated frame. On the horse (horse-01.. as examples, horse-10's vertices as targets) with
 // 4 and 9 examples when ../shared/data is present, and on the generated demo arm.
 #include <posekit/blended_deformation.hpp>
@@ -117,6 +117,19 @@ BENCHMARK(BM_DeformHorse)->Arg(4)->Arg(9)->Unit(benchmark::kMillisecond)->Comput
 
 void BM_DeformArm(benchmark::State& state) { deform(state, arm()); }
 BENCHMARK(BM_DeformArm)->Unit(benchmark::kMillisecond)->ComputeStatistics("min", minimum);
+
+// The last part of every deformation: the vertices D T of the result.
+void BM_VerticesHorse(benchmark::State& state) {
+  Case* c = horse(static_cast<int>(state.range(0)));
+  if (c == nullptr) {
+    state.SkipWithError("shared pose data not found: horse-poses");
+    return;
+  }
+  const BlendResult result = c->deformer->deform(c->targets);
+  for (auto _ : state) benchmark::DoNotOptimize(c->deformer->vertices(result.transformations).data());
+  report_sizes(state, *c);
+}
+BENCHMARK(BM_VerticesHorse)->Arg(4)->Arg(9)->Unit(benchmark::kMillisecond)->ComputeStatistics("min", minimum);
 
 // Moving one constraint to another vertex: a rank-one update and a downdate of both factors ...
 void BM_ReplaceConstraintHorse(benchmark::State& state) {

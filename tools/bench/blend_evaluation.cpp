@@ -16,6 +16,9 @@
 #include <posekit/partial_registration.hpp>
 #include <posekit/topology.hpp>
 
+#include <Eigen/LU>
+#include <Eigen/SVD>
+
 #include "blend/edge_distances.hpp"
 
 #include <algorithm>
@@ -64,9 +67,41 @@ struct Distortion {
   double mean = 0.0;
 };
 
+// The baseline: the example that, rigidly placed on the constrained vertices (Kabsch), meets them
+// best, and its distortion.
+Distortion nearest_example(const PoseSet& examples, const std::vector<int>& vertices, const Eigen::MatrixX3d& truth,
+                           const Eigen::MatrixX3i& faces);
+
 Distortion distortion(const Eigen::MatrixX3d& result, const Eigen::MatrixX3d& truth, const Eigen::MatrixX3i& faces) {
   const Eigen::VectorXd error = (result - truth).rowwise().norm() / std::sqrt(face_areas(truth, faces).sum());
   return {error.maxCoeff(), error.mean()};
+}
+
+Distortion nearest_example(const PoseSet& examples, const std::vector<int>& vertices, const Eigen::MatrixX3d& truth,
+                           const Eigen::MatrixX3i& faces) {
+  double best_residual = std::numeric_limits<double>::infinity();
+  Distortion best;
+  for (int k = 0; k < examples.pose_count(); ++k) {
+    Eigen::MatrixX3d a(static_cast<Eigen::Index>(vertices.size()), 3), b(a.rows(), 3);
+    for (size_t r = 0; r < vertices.size(); ++r) {
+      a.row(static_cast<Eigen::Index>(r)) = examples.pose(k).row(vertices[r]);
+      b.row(static_cast<Eigen::Index>(r)) = truth.row(vertices[r]);
+    }
+    const Eigen::RowVector3d ca = a.colwise().mean(), cb = b.colwise().mean();
+    const Eigen::Matrix3d covariance = (b.rowwise() - cb).transpose() * (a.rowwise() - ca);
+    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(covariance, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    Eigen::Matrix3d u = svd.matrixU();
+    if ((u * svd.matrixV().transpose()).determinant() < 0.0) u.col(2) *= -1.0;
+    const Eigen::Matrix3d rotation = u * svd.matrixV().transpose();
+    const Eigen::MatrixX3d placed = ((examples.pose(k).rowwise() - ca) * rotation.transpose()).rowwise() + cb;
+    double residual = 0.0;
+    for (int v : vertices) residual += (placed.row(v) - truth.row(v)).squaredNorm();
+    if (residual < best_residual) {
+      best_residual = residual;
+      best = distortion(placed, truth, faces);
+    }
+  }
+  return best;
 }
 
 // Summary of one table cell over the poses.
@@ -208,6 +243,7 @@ struct SetResults {
   int poses = 0;
   int vertices = 0;
   Cell cases[3];
+  Cell baseline[3];
   Cell scaled;
   Cell initial, completed;
   std::vector<double> correct_fraction, removed_fraction, registration_seconds;
@@ -249,6 +285,7 @@ SetResults evaluate(const Settings& settings, const std::string& name) {
       const BlendResult result = deformer.deform(targets);
       const Distortion d = distortion(result.vertices, truth, faces);
       out.cases[c].add(d, result.seconds);
+      if (c > 0) out.baseline[c].add(nearest_example(examples, *sets[c], truth, faces), 0.0);
       if (settings.verbose) {
         std::printf("  %s case %c: max %.2f %% mean %.3f %% scale %.3f %.2f ms\n", all.pose_name(h).c_str(), "abc"[c],
                     100 * d.max, 100 * d.mean, result.scale, 1e3 * result.seconds);
@@ -350,15 +387,21 @@ int main(int argc, char** argv) {
   }
   std::printf("\nLeave-one-out (distortion = vertex error / sqrt(area); max: mean over poses of the largest, worst: "
               "largest over poses)\n");
-  std::printf("| set | vertices | poses | atoms | clusters | case | max %% | worst max %% | mean %% | ms per deformation (median) |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("| set | vertices | poses | atoms | clusters | case | max %% | worst max %% | mean %% | ms per deformation (median) "
+              "| nearest example rigidly placed: max %% / mean %% |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
   const char* labels[3] = {"(a) all vertices", "(b) 20 vertices", "(c) 10 vertices"};
   for (const SetResults& r : results) {
     for (int c = 0; c < 3; ++c) {
       const Cell& cell = r.cases[c];
-      std::printf("| %s | %d | %d | %d | %d | %s | %.2f | %.2f | %.3f | %.2f |\n", r.name.c_str(), r.vertices, r.poses,
+      std::printf("| %s | %d | %d | %d | %d | %s | %.2f | %.2f | %.3f | %.2f | ", r.name.c_str(), r.vertices, r.poses,
                   r.atoms, r.clusters, labels[c], 100 * Cell::average(cell.max), 100 * Cell::largest(cell.max),
                   100 * Cell::average(cell.mean), 1e3 * Cell::median(cell.seconds));
+      if (c == 0) {
+        std::printf("- |\n");
+      } else {
+        std::printf("%.2f / %.3f |\n", 100 * Cell::average(r.baseline[c].max), 100 * Cell::average(r.baseline[c].mean));
+      }
     }
   }
   std::printf("\nScale: 20 constraints from the pose scaled by 1.5\n");
