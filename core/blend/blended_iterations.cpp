@@ -1,0 +1,282 @@
+// BlendedDeformer: the local/global iterations of one deformation.
+#include <posekit/error.hpp>
+
+#include "blend/deformer_state.hpp"
+#include "blend/rotation_fit.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace posekit {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// A scale cannot be negative or zero; this floor only matters for meaningless constraint sets.
+constexpr double kMinimumScale = 1e-8;
+
+double soft_threshold(double value, double threshold) {
+  if (value > threshold) return value - threshold;
+  if (value < -threshold) return value + threshold;
+  return 0.0;
+}
+
+}  // namespace
+
+void BlendedDeformer::State::local_step(const Eigen::MatrixX3d& transformations, std::vector<Eigen::Matrix3d>& rotations,
+                                        Eigen::VectorXd& dots) const {
+  const int blocks = block_count();
+  rotations.resize(static_cast<size_t>(blocks));
+  std::vector<double> block_dots(static_cast<size_t>(blocks));
+  tbb::parallel_for(tbb::blocked_range<int>(0, blocks, 16), [&](const tbb::blocked_range<int>& range) {
+    for (int j = range.begin(); j < range.end(); ++j) {
+      // S = T^T G_j as dot products of contiguous columns: a general matrix product would repack G
+      // (the largest array of the iteration) on every call.
+      Eigen::Matrix3d s;
+      for (int b = 0; b < 3; ++b) {
+        const auto column = projected.col(3 * j + b);
+        for (int a = 0; a < 3; ++a) s(a, b) = transformations.col(a).dot(column);
+      }
+      const Eigen::Matrix3d r = detail::closest_rotation(s);
+      rotations[static_cast<size_t>(j)] = r;
+      block_dots[static_cast<size_t>(j)] = r.cwiseProduct(s).sum();
+    }
+  });
+  dots = Eigen::VectorXd::Zero(example_count());
+  for (int j = 0; j < blocks; ++j) dots(j / cluster_count) += block_dots[static_cast<size_t>(j)];
+}
+
+void BlendedDeformer::State::accumulate_blocks(int first, int last, const Eigen::MatrixX3d& stacked,
+                                               Eigen::MatrixX3d& side) const {
+  const int rows = atom_count();
+  const int chunk = std::max(32, (rows + 3) / 4);
+  tbb::parallel_for(0, (rows + chunk - 1) / chunk, [&](int part) {
+    const int top = part * chunk;
+    const int height = std::min(chunk, rows - top);
+    auto out = side.middleRows(top, height);
+    for (int j = first; j < last; ++j) {
+      for (int b = 0; b < 3; ++b) {
+        const auto column = projected.col(3 * j + b).segment(top, height);
+        const int row = 3 * j + b;
+        out.col(0) += stacked(row, 0) * column;
+        out.col(1) += stacked(row, 1) * column;
+        out.col(2) += stacked(row, 2) * column;
+      }
+    }
+  });
+}
+
+Eigen::MatrixX3d BlendedDeformer::State::arap_right_side(const std::vector<Eigen::Matrix3d>& rotations,
+                                                         const Eigen::VectorXd& coefficients) const {
+  const int blocks = block_count();
+  Eigen::MatrixX3d stacked(3 * blocks, 3);
+  for (int j = 0; j < blocks; ++j) {
+    stacked.middleRows<3>(3 * j) = coefficients(j / cluster_count) * rotations[static_cast<size_t>(j)].transpose();
+  }
+  Eigen::MatrixX3d side = Eigen::MatrixX3d::Zero(atom_count(), 3);
+  accumulate_blocks(0, blocks, stacked, side);
+  return side;
+}
+
+Eigen::MatrixXd BlendedDeformer::State::arap_right_sides(const std::vector<Eigen::Matrix3d>& rotations,
+                                                         const Eigen::VectorXd& coefficients) const {
+  const int k_count = example_count();
+  const int blocks = block_count();
+  Eigen::MatrixX3d stacked(3 * blocks, 3);
+  for (int j = 0; j < blocks; ++j) {
+    stacked.middleRows<3>(3 * j) = coefficients(j / cluster_count) * rotations[static_cast<size_t>(j)].transpose();
+  }
+  Eigen::MatrixXd sides(atom_count(), 3 * k_count);
+  Eigen::MatrixX3d side(atom_count(), 3);
+  for (int k = 0; k < k_count; ++k) {
+    side.setZero();
+    accumulate_blocks(k * cluster_count, (k + 1) * cluster_count, stacked, side);
+    sides.middleCols<3>(3 * k) = side;
+  }
+  return sides;
+}
+
+Eigen::MatrixX3d BlendedDeformer::State::initial_solve(const Eigen::MatrixX3d& right_side, double& energy) const {
+  if (options.sparsity <= 0.0) {
+    Eigen::MatrixX3d t = initial.solve(right_side);
+    energy = -t.cwiseProduct(right_side).sum();
+    return t;
+  }
+  // Elastic net: min t^T Q t - 2 b^T t + mu |t|_1 per column by coordinate descent on the Gram
+  // matrix Q (constraints + smoothness + ridge, the quadratic part). mu >= 2 max|b| gives t = 0.
+  const Eigen::MatrixXd& q = initial_matrix;
+  const int n = static_cast<int>(q.rows());
+  const double mu = options.sparsity * 2.0 * right_side.cwiseAbs().maxCoeff();
+  Eigen::MatrixX3d t = Eigen::MatrixX3d::Zero(n, 3);
+  energy = 0.0;
+  for (int column = 0; column < 3; ++column) {
+    Eigen::VectorXd gradient = -right_side.col(column);  // Q t - b
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+    for (int sweep = 0; sweep < 1000; ++sweep) {
+      double largest_change = 0.0;
+      for (int p = 0; p < n; ++p) {
+        const double diagonal = q(p, p);
+        const double updated = soft_threshold(diagonal * x(p) - gradient(p), 0.5 * mu) / diagonal;
+        const double change = updated - x(p);
+        if (change == 0.0) continue;
+        gradient.noalias() += change * q.col(p);
+        x(p) = updated;
+        largest_change = std::max(largest_change, std::abs(change) * std::sqrt(diagonal));
+      }
+      if (largest_change <= 1e-9 * std::sqrt(std::max(x.dot(q * x), 1e-300))) break;
+    }
+    t.col(column) = x;
+    energy += x.dot(gradient - right_side.col(column)) + mu * x.cwiseAbs().sum();  // t^T Q t - 2 b^T t + mu|t|
+  }
+  return t;
+}
+
+double BlendedDeformer::State::closed_form_scale(double dot, double energy) const {
+  return options.estimate_scale ? std::max(dot / energy, kMinimumScale) : 1.0;
+}
+
+namespace {
+
+struct Iterate {
+  Eigen::MatrixX3d transformations;
+  std::vector<Eigen::Matrix3d> rotations;
+  Eigen::VectorXd weights;
+  Eigen::VectorXd scales;
+  double scale = 1.0;
+  int example = -1;
+  double energy = std::numeric_limits<double>::infinity();
+};
+
+bool converged(double previous, double current, double tolerance) {
+  return std::isfinite(previous) && previous - current <= tolerance * std::abs(previous);
+}
+
+}  // namespace
+
+BlendResult BlendedDeformer::deform(const Eigen::MatrixX3d& targets) const {
+  const State& s = *state_;
+  const Clock::time_point start = Clock::now();
+  const Eigen::MatrixX3d p = s.internal_targets(targets);
+  const Eigen::MatrixX3d weighted = s.row_weights.asDiagonal() * p;
+  const Eigen::MatrixX3d constraint_side = s.rows.transpose() * weighted;
+  const double constant = weighted.cwiseProduct(p).sum();
+  BlendResult result;
+  double initial_energy = 0.0;
+  result.transformations = s.initial_solve(constraint_side, initial_energy);
+  result.iterations.push_back({"initial", constant + initial_energy, 1.0, -1});
+  BlendResult continued = deform(targets, result);
+  continued.iterations.insert(continued.iterations.begin(), result.iterations.front());
+  continued.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return continued;
+}
+
+BlendResult BlendedDeformer::deform(const Eigen::MatrixX3d& targets, const BlendResult& start_from,
+                                    int average_iterations, int minimal_iterations) const {
+  const State& s = *state_;
+  const Clock::time_point start = Clock::now();
+  if (start_from.transformations.rows() != s.atom_count()) {
+    throw ArgumentError("blended deformation: the start has " + std::to_string(start_from.transformations.rows()) +
+                        " transformation rows for " + std::to_string(s.atom_count()) + " atoms");
+  }
+  const Eigen::MatrixX3d p = s.internal_targets(targets);
+  const Eigen::MatrixX3d weighted = s.row_weights.asDiagonal() * p;
+  const Eigen::MatrixX3d constraint_side = s.rows.transpose() * weighted;
+  const double constant = weighted.cwiseProduct(p).sum();
+  const int k_count = s.example_count();
+  const BlendOptions& o = s.options;
+  const double total_example_energy = s.example_energy.sum();
+
+  BlendResult result;
+  Iterate current;
+  current.transformations = start_from.transformations;
+  Eigen::VectorXd dots;
+  std::vector<Eigen::Matrix3d> rotations;
+
+  double previous = std::numeric_limits<double>::infinity();
+  const int average_count = average_iterations >= 0 ? average_iterations : o.average_iterations;
+  const int minimal_count = minimal_iterations >= 0 ? minimal_iterations : o.minimal_iterations;
+  for (int iteration = 0; iteration < average_count; ++iteration) {
+    s.local_step(current.transformations, rotations, dots);
+    const double scale = s.closed_form_scale(dots.sum(), total_example_energy);
+    const Eigen::VectorXd coefficients = Eigen::VectorXd::Constant(k_count, scale / k_count);
+    const Eigen::MatrixX3d side = constraint_side + s.arap_right_side(rotations, coefficients);
+    current.transformations = s.global.solve(side);
+    current.energy = constant + scale * scale * total_example_energy / k_count - current.transformations.cwiseProduct(side).sum();
+    current.rotations = rotations;
+    current.weights = Eigen::VectorXd::Constant(k_count, 1.0 / k_count);
+    current.scales = Eigen::VectorXd::Constant(k_count, scale);
+    current.scale = scale;
+    current.example = -1;
+    result.iterations.push_back({"average", current.energy, scale, -1});
+    if (converged(previous, current.energy, o.tolerance)) break;
+    previous = current.energy;
+  }
+
+  previous = std::numeric_limits<double>::infinity();
+  for (int iteration = 0; iteration < minimal_count; ++iteration) {
+    s.local_step(current.transformations, rotations, dots);
+    Eigen::VectorXd scales(k_count);
+    for (int k = 0; k < k_count; ++k) {
+      scales(k) = s.closed_form_scale(dots(k), s.example_energy(k));
+    }
+    Eigen::MatrixXd sides = s.arap_right_sides(rotations, scales);
+    for (int k = 0; k < k_count; ++k) sides.middleCols<3>(3 * k) += constraint_side;
+    // With Q = L L^T the minimum over T of the energy for example k is c_k - b_k^T Q^-1 b_k
+    // = c_k - |L^-1 b_k|^2: one forward substitution per example decides, and only the chosen one
+    // is solved to the end.
+    Eigen::MatrixXd forward = sides;
+    s.global.matrixL().solveInPlace(forward);
+    int best = 0;
+    double best_energy = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < k_count; ++k) {
+      const double energy =
+          constant + scales(k) * scales(k) * s.example_energy(k) - forward.middleCols<3>(3 * k).squaredNorm();
+      if (energy < best_energy) {
+        best_energy = energy;
+        best = k;
+      }
+    }
+    Eigen::MatrixX3d solution = forward.middleCols<3>(3 * best);
+    s.global.matrixU().solveInPlace(solution);
+    current.transformations = solution;
+    current.energy = best_energy;
+    current.rotations = rotations;
+    current.weights = Eigen::VectorXd::Zero(k_count);
+    current.weights(best) = 1.0;
+    current.scales = scales;
+    current.scale = scales(best);
+    current.example = best;
+    result.iterations.push_back({"minimal", best_energy, scales(best), best});
+    if (converged(previous, best_energy, o.tolerance)) break;
+    previous = best_energy;
+  }
+
+  if (current.rotations.empty()) {
+    // No iteration ran: rotations and scale of the starting transformations, for interpolation.
+    s.local_step(current.transformations, current.rotations, dots);
+    current.scale = s.closed_form_scale(dots.sum(), total_example_energy);
+    current.weights = Eigen::VectorXd::Constant(k_count, 1.0 / k_count);
+    current.scales = Eigen::VectorXd::Constant(k_count, current.scale);
+    current.energy = start_from.iterations.empty() ? std::numeric_limits<double>::quiet_NaN()
+                                                   : start_from.iterations.back().energy;
+  }
+  result.targets = targets;
+  result.transformations = current.transformations;
+  result.rotations = std::move(current.rotations);
+  result.example_weights = current.weights;
+  result.example_scales = current.scales;
+  result.scale = current.scale;
+  result.closest_example = current.example;
+  result.energy = current.energy;
+  result.vertices = vertices(result.transformations);
+  result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return result;
+}
+
+}  // namespace posekit

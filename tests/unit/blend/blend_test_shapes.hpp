@@ -1,0 +1,129 @@
+// Small shapes for the blend tests: an icosphere (known Laplace-Beltrami spectrum) and the demo arm
+// in a few bends, with helpers to pick constraints.
+#pragma once
+
+#include <posekit/demo_shape.hpp>
+#include <posekit/geometry.hpp>
+#include <posekit/mesh.hpp>
+
+#include <Eigen/Core>
+
+#include <cmath>
+#include <map>
+#include <utility>
+#include <vector>
+
+namespace posekit::testing {
+
+/// Unit sphere: an icosahedron subdivided `levels` times, vertices projected onto the sphere.
+inline Mesh icosphere(int levels) {
+  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+  std::vector<Eigen::RowVector3d> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                                       {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  std::vector<Eigen::RowVector3i> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                                       {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                                       {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                                       {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+  for (auto& p : v) p.normalize();
+  for (int level = 0; level < levels; ++level) {
+    std::map<std::pair<int, int>, int> middle;
+    const auto mid = [&](int a, int b) {
+      const std::pair<int, int> key(std::min(a, b), std::max(a, b));
+      const auto found = middle.find(key);
+      if (found != middle.end()) return found->second;
+      v.push_back((0.5 * (v[static_cast<size_t>(a)] + v[static_cast<size_t>(b)])).normalized());
+      const int index = static_cast<int>(v.size()) - 1;
+      middle[key] = index;
+      return index;
+    };
+    std::vector<Eigen::RowVector3i> finer;
+    for (const auto& face : f) {
+      const int a = mid(face(0), face(1)), b = mid(face(1), face(2)), c = mid(face(2), face(0));
+      finer.push_back({face(0), a, c});
+      finer.push_back({face(1), b, a});
+      finer.push_back({face(2), c, b});
+      finer.push_back({a, b, c});
+    }
+    f = std::move(finer);
+  }
+  Mesh mesh;
+  mesh.vertices.resize(static_cast<Eigen::Index>(v.size()), 3);
+  mesh.faces.resize(static_cast<Eigen::Index>(f.size()), 3);
+  for (size_t i = 0; i < v.size(); ++i) mesh.vertices.row(static_cast<Eigen::Index>(i)) = v[i];
+  for (size_t i = 0; i < f.size(); ++i) mesh.faces.row(static_cast<Eigen::Index>(i)) = f[i];
+  return mesh;
+}
+
+/// The demo arm (16 segments per ring, 1,000-odd vertices) bent by each angle, the first usually 0.
+inline PoseSet small_arm(const std::vector<double>& angles) {
+  DemoArmOptions options;
+  options.ring_segments = 16;
+  std::vector<double> bends;
+  for (double a : angles) {
+    if (a != 0.0) bends.push_back(a);
+  }
+  options.bend_angles_degrees = bends;
+  const PoseSet generated = make_demo_arm(options);
+  PoseSet poses(generated.faces());
+  size_t next = 1;
+  for (double a : angles) {
+    if (a == 0.0) {
+      poses.add_pose(generated.pose(0), generated.pose_name(0));
+    } else {
+      poses.add_pose(generated.pose(static_cast<int>(next)), generated.pose_name(static_cast<int>(next)));
+      ++next;
+    }
+  }
+  return poses;
+}
+
+/// `count` vertices spread by farthest-point sampling from the vertex farthest from the centroid.
+inline std::vector<int> spread_vertices(const Eigen::MatrixX3d& vertices, int count) {
+  std::vector<int> chosen;
+  Eigen::Index first = 0;
+  (vertices.rowwise() - vertices.colwise().mean()).rowwise().squaredNorm().maxCoeff(&first);
+  chosen.push_back(static_cast<int>(first));
+  Eigen::VectorXd nearest = (vertices.rowwise() - vertices.row(first)).rowwise().squaredNorm();
+  while (static_cast<int>(chosen.size()) < count) {
+    Eigen::Index next = 0;
+    nearest.maxCoeff(&next);
+    chosen.push_back(static_cast<int>(next));
+    nearest = nearest.cwiseMin((vertices.rowwise() - vertices.row(next)).rowwise().squaredNorm());
+  }
+  return chosen;
+}
+
+/// A partial scan of `pose`: the faces for which keep(face) holds, their vertices renumbered in
+/// order; `original` receives the pose vertex of every scan vertex.
+template <typename Keep>
+Mesh partial_scan(const Eigen::MatrixX3d& pose, const Eigen::MatrixX3i& faces, Keep keep, std::vector<int>& original) {
+  std::vector<int> index(static_cast<size_t>(pose.rows()), -1);
+  std::vector<Eigen::RowVector3i> kept;
+  original.clear();
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    if (!keep(static_cast<int>(f))) continue;
+    Eigen::RowVector3i face;
+    for (int c = 0; c < 3; ++c) {
+      int& i = index[static_cast<size_t>(faces(f, c))];
+      if (i < 0) {
+        i = static_cast<int>(original.size());
+        original.push_back(faces(f, c));
+      }
+      face(c) = i;
+    }
+    kept.push_back(face);
+  }
+  Mesh scan;
+  scan.vertices.resize(static_cast<Eigen::Index>(original.size()), 3);
+  for (size_t i = 0; i < original.size(); ++i) scan.vertices.row(static_cast<Eigen::Index>(i)) = pose.row(original[i]);
+  scan.faces.resize(static_cast<Eigen::Index>(kept.size()), 3);
+  for (size_t f = 0; f < kept.size(); ++f) scan.faces.row(static_cast<Eigen::Index>(f)) = kept[f];
+  return scan;
+}
+
+/// The largest vertex distance between two poses, over the square root of the area of `truth`.
+inline double max_distortion(const Eigen::MatrixX3d& result, const Eigen::MatrixX3d& truth, const Eigen::MatrixX3i& faces) {
+  return (result - truth).rowwise().norm().maxCoeff() / std::sqrt(face_areas(truth, faces).sum());
+}
+
+}  // namespace posekit::testing

@@ -1,0 +1,124 @@
+#include "blend_common.hpp"
+
+#include "cli_common.hpp"
+
+#include <posekit/error.hpp>
+#include <posekit/laplace_beltrami.hpp>
+#include <posekit/mesh_io.hpp>
+
+namespace posekit::cli {
+
+void add_blend_options(CLI::App* command, BlendCommandOptions& options) {
+  BlendOptions& b = options.blend;
+  command->add_option("--examples", options.examples,
+                      "Example poses of one connectivity; the first is the reference for weights and clusters")
+      ->required()
+      ->expected(1, -1);
+  command->add_option("--weights", options.weights,
+                      "Skinning weights (one row of numbers per vertex) instead of Laplace-Beltrami eigenfunctions");
+  command->add_option("--eigenfunctions", b.eigenfunctions, "Laplace-Beltrami eigenfunctions used as weights")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  command->add_option("--atom-fraction", b.atom_fraction, "Fraction of dictionary atoms kept by k-medoids")
+      ->check(CLI::Range(1e-6, 1.0))
+      ->capture_default_str();
+  command->add_option("--clusters", b.rotation_clusters,
+                      "Rotation clusters (0 with --weights: one per weight function)")
+      ->check(CLI::Range(0, 100000))
+      ->capture_default_str();
+  command->add_option("--constraint-weight", b.constraint_weight, "Weight of each constraint against ARAP")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command->add_option("--smoothness-weight", b.smoothness_weight, "Weight of the smoothness of the blended maps")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  command->add_option("--sparsity", b.sparsity, "Elastic-net L1 weight of the initial solve, in [0, 1)")
+      ->check(CLI::Range(0.0, 0.999999))
+      ->capture_default_str();
+  command->add_option("--average-iterations", b.average_iterations, "Local/global iterations with average ARAP")
+      ->check(CLI::Range(0, 10000))
+      ->capture_default_str();
+  command->add_option("--minimal-iterations", b.minimal_iterations, "Local/global iterations with minimal ARAP")
+      ->check(CLI::Range(0, 10000))
+      ->capture_default_str();
+  command->add_flag("--no-scale", options.no_scale, "Keep the global scale at 1 instead of estimating it");
+}
+
+PoseSet read_examples(const BlendCommandOptions& options) {
+  std::vector<std::filesystem::path> files(options.examples.begin(), options.examples.end());
+  std::vector<std::string> warnings;
+  PoseSet examples = read_pose_set(files, &warnings);
+  print_warnings(warnings);
+  try {
+    check_laplace_beltrami_mesh(examples.pose(0), examples.faces());
+  } catch (const ArgumentError& error) {
+    throw InputError(options.examples.front(), 0, std::string("cannot serve as the reference pose: ") + error.what());
+  }
+  return examples;
+}
+
+BlendedDeformer make_deformer(const PoseSet& examples, const BlendCommandOptions& options) {
+  BlendOptions blend = options.blend;
+  blend.estimate_scale = !options.no_scale;
+  if (options.weights.empty()) {
+    if (blend.eigenfunctions >= examples.vertex_count()) {
+      throw ArgumentError("--eigenfunctions " + std::to_string(blend.eigenfunctions) + " must be below the " +
+                          std::to_string(examples.vertex_count()) + " vertices of the examples");
+    }
+    if (blend.rotation_clusters == 0) throw ArgumentError("--clusters 0 needs --weights");
+    return BlendedDeformer(examples, blend);
+  }
+  const Eigen::MatrixXd weights = read_skinning_weights(options.weights, examples.vertex_count());
+  return BlendedDeformer(examples, weights, blend);
+}
+
+BlendResult deform_to_points(BlendedDeformer& deformer, PointConstraints& constraints, nlohmann::json& report) {
+  const bool ambiguous =
+      std::any_of(constraints.groups.begin(), constraints.groups.end(), [](const std::string& g) { return !g.empty(); });
+  if (!ambiguous) {
+    std::vector<LinearConstraint> rows;
+    for (int v : constraints.vertices) rows.push_back(LinearConstraint::vertex(v));
+    deformer.set_constraints(rows);
+    return deformer.deform(constraints.positions);
+  }
+  const std::vector<std::vector<int>> assignments = permissible_assignments(constraints.vertices, constraints.groups);
+  CorrespondenceChoice choice = choose_correspondence(deformer, constraints.positions, assignments);
+  report["correspondence"] = {{"assignments", assignments.size()},
+                              {"chosen", choice.assignment},
+                              {"vertices", choice.vertices},
+                              {"energies", choice.energies}};
+  constraints.vertices = choice.vertices;
+  return std::move(choice.result);
+}
+
+nlohmann::json setup_json(const BlendSetupReport& setup) {
+  return {{"vertices", setup.vertices},
+          {"examples", setup.examples},
+          {"weights", setup.weights},
+          {"atoms", {{"full", setup.full_atoms}, {"kept", setup.atoms}}},
+          {"clusters", setup.clusters},
+          {"seconds",
+           {{"weights", setup.seconds.weights},
+            {"dictionary", setup.seconds.dictionary},
+            {"clusters", setup.seconds.clusters},
+            {"system", setup.seconds.system},
+            {"total", setup.seconds.total}}}};
+}
+
+nlohmann::json deformation_json(const BlendResult& result, const PoseSet& examples) {
+  nlohmann::json iterations = nlohmann::json::array();
+  for (const BlendIteration& it : result.iterations) {
+    nlohmann::json entry = {{"stage", it.stage}, {"energy", it.energy}, {"scale", it.scale}};
+    if (it.example >= 0) entry["example"] = examples.pose_name(it.example);
+    iterations.push_back(entry);
+  }
+  nlohmann::json json = {{"energy", result.energy},
+                         {"scale", result.scale},
+                         {"iterations", iterations},
+                         {"seconds", result.seconds}};
+  json["closest_example"] = result.closest_example >= 0 ? nlohmann::json(examples.pose_name(result.closest_example))
+                                                        : nlohmann::json(nullptr);
+  return json;
+}
+
+}  // namespace posekit::cli
