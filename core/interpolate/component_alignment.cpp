@@ -76,7 +76,7 @@ std::vector<RigidTransform> ComponentAlignment::align(const std::vector<Eigen::M
       const RigidTransform& motion = transforms[static_cast<size_t>(overlap.other)];
       for (size_t i = 0; i < overlap.own_rows.size(); ++i, ++row) {
         source.row(row) = shapes[static_cast<size_t>(c)].row(overlap.own_rows[i]);
-        target.row(row) = motion.apply(Eigen::RowVector3d(other.row(overlap.other_rows[i])));
+        target.row(row) = motion.apply_to_point(other.row(overlap.other_rows[i]));
       }
     }
     transforms[static_cast<size_t>(c)] = best_rigid_transform(source, target);

@@ -9,6 +9,7 @@
 #include <posekit/interpolate.hpp>
 
 #include <memory>
+#include <vector>
 
 namespace posekit::interpolation {
 
@@ -26,6 +27,8 @@ class EdgeInterpolation {
   const EdgeSpaceCoordinates& coordinates_;
   InterpolationOptions options_;
   int vertex_count_;
+  const PoseSet& poses_;
+  std::vector<std::vector<int>> pieces_;  // vertices of every edge-connected piece of the mesh
   std::unique_ptr<EdgeSpaceReconstruction> reconstruction_;
   std::unique_ptr<GlobalPose> global_pose_;
 };

@@ -1,6 +1,9 @@
 #include <posekit/error.hpp>
 #include <posekit/geometry.hpp>
 #include <posekit/interpolation_error.hpp>
+#include <posekit/rigid_motion.hpp>
+
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -44,25 +47,64 @@ Eigen::VectorXd smallest_face_areas(const PoseSet& poses) {
   return areas;
 }
 
-InterpolationErrorMeter::InterpolationErrorMeter(const PoseSet& poses) {
+InterpolationErrorMeter::InterpolationErrorMeter(const PoseSet& poses) : poses_(poses) {
   if (poses.pose_count() == 0) throw ArgumentError("InterpolationErrorMeter: the pose set has no pose");
   faces_ = poses.faces();
   edges_ = edge_map(faces_);
   incident_faces_ = edge_faces(edges_);
+  neighbours_ = vertex_neighbours(faces_, poses.vertex_count());
   coordinates_ = edge_space_coordinates(poses, edges_, incident_faces_);
   reference_areas_ = smallest_face_areas(poses);
 }
 
-InterpolationErrorMeter::InterpolationErrorMeter(Eigen::MatrixX3i faces, EdgeMap edges, AdjacencyLists incident_faces,
-                                                 EdgeSpaceCoordinates coordinates, Eigen::VectorXd reference_areas)
-    : faces_(std::move(faces)),
+InterpolationErrorMeter::InterpolationErrorMeter(const PoseSet& poses, EdgeMap edges, AdjacencyLists incident_faces,
+                                                 AdjacencyLists neighbours, EdgeSpaceCoordinates coordinates)
+    : poses_(poses),
+      faces_(poses.faces()),
       edges_(std::move(edges)),
       incident_faces_(std::move(incident_faces)),
-      coordinates_(std::move(coordinates)),
-      reference_areas_(std::move(reference_areas)) {
-  if (coordinates_.edge_count() != edges_.edges.rows() || reference_areas_.size() != faces_.rows()) {
-    throw ArgumentError("InterpolationErrorMeter: edge-space coordinates or areas do not match the mesh");
+      neighbours_(std::move(neighbours)),
+      coordinates_(std::move(coordinates)) {
+  if (poses.pose_count() == 0) throw ArgumentError("InterpolationErrorMeter: the pose set has no pose");
+  if (coordinates_.edge_count() != edges_.edges.rows() || edges_.face_edges.rows() != faces_.rows() ||
+      neighbours_.item_count() != poses.vertex_count()) {
+    throw ArgumentError("InterpolationErrorMeter: the topology or edge-space coordinates do not match the poses");
   }
+  reference_areas_ = smallest_face_areas(poses);
+}
+
+int InterpolationErrorMeter::flipped_faces(const Eigen::MatrixX3d& result) const {
+  const int vertex_count = poses_.vertex_count();
+  const int face_count = static_cast<int>(faces_.rows());
+  const Eigen::MatrixX3d result_normals = face_normals(result, faces_);
+  std::vector<char> agrees(static_cast<size_t>(face_count), 0);
+  std::vector<Eigen::Matrix3d> turns(static_cast<size_t>(vertex_count));
+  for (int k = 0; k < poses_.pose_count(); ++k) {
+    const Eigen::MatrixX3d& pose = poses_.pose(k);
+    // The rotation that best moves each vertex's one-ring (with the vertex) from the pose onto the result.
+    tbb::parallel_for(0, vertex_count, [&](int v) {
+      const IndexRange ring = neighbours_[v];
+      Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+      for (const int w : ring) {
+        covariance += (result.row(w) - result.row(v)).transpose() * (pose.row(w) - pose.row(v));
+      }
+      turns[static_cast<size_t>(v)] = nearest_rotation(covariance);
+    });
+    const Eigen::MatrixX3d normals = face_normals(pose, faces_);
+    tbb::parallel_for(0, face_count, [&](int f) {
+      double agreement = 0.0;
+      for (int corner = 0; corner < 3; ++corner) {
+        agreement += result_normals.row(f).dot(normals.row(f) * turns[static_cast<size_t>(faces_(f, corner))].transpose());
+      }
+      if (agreement >= 0.0) agrees[static_cast<size_t>(f)] = 1;
+    });
+  }
+  int flipped = 0;
+  for (int f = 0; f < face_count; ++f) {
+    // Degenerate faces have no normal to flip.
+    if (!agrees[static_cast<size_t>(f)] && result_normals.row(f).squaredNorm() > 0.0) ++flipped;
+  }
+  return flipped;
 }
 
 InterpolationError InterpolationErrorMeter::measure(const Eigen::MatrixX3d& result, const Eigen::VectorXd& weights) const {
@@ -99,6 +141,7 @@ InterpolationError InterpolationErrorMeter::measure(const Eigen::MatrixX3d& resu
   for (Eigen::Index f = 0; f < areas.size(); ++f) {
     if (areas(f) < kCollapsedAreaFraction * reference_areas_(f)) ++error.collapsed_faces;
   }
+  error.flipped_faces = flipped_faces(result);
   return error;
 }
 

@@ -111,8 +111,7 @@ PoseInterpolator::PoseInterpolator(PoseSet poses, const InterpolationOptions& op
   s.incident_faces = edge_faces(s.edges);
   s.neighbours = vertex_neighbours(s.poses.faces(), s.poses.vertex_count());
   s.coordinates = edge_space_coordinates(s.poses, s.edges, s.incident_faces);
-  s.meter = std::make_unique<InterpolationErrorMeter>(s.poses.faces(), s.edges, s.incident_faces, s.coordinates,
-                                                      smallest_face_areas(s.poses));
+  s.meter = std::make_unique<InterpolationErrorMeter>(s.poses, s.edges, s.incident_faces, s.neighbours, s.coordinates);
   s.seconds.edge_space = seconds_since(stage);
   s.layout.edge_dimension = 2LL * s.coordinates.edge_count();
 

@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   posekit::cli::add_devices_command(app, exit_status);
   posekit::cli::add_check_command(app, exit_status);
   posekit::cli::add_correct_command(app, exit_status);
+  posekit::cli::add_interpolate_command(app, exit_status);
   posekit::cli::add_convert_command(app, exit_status);
   posekit::cli::add_generate_command(app, exit_status);
   posekit::cli::add_demo_command(app, exit_status);

@@ -23,6 +23,7 @@ std::vector<Eigen::Matrix3d> face_deformation_gradients(const Eigen::MatrixX3d& 
 /// by nearly pi has two logarithms far apart (theta * axis and (theta - 2 pi) * axis); picking them
 /// face by face would send neighbours around opposite ways (a tail twisted by 180 degrees), so the
 /// branch is chosen to agree with the neighbours, spreading out from the faces rotated by less than 0.9 pi.
+/// Those keep their principal logarithm, so a twist that goes on beyond about 1.1 pi is not followed.
 std::vector<Eigen::Vector3d> consistent_rotation_logs(const std::vector<Eigen::AngleAxisd>& rotations,
                                                       const Eigen::MatrixX3i& faces);
 

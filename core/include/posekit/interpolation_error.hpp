@@ -26,6 +26,9 @@ struct InterpolationError {
   int collapsed_faces = 0;
   /// Hinges whose dihedral angle is more than 90 degrees from its target: a face turned over.
   int folded_edges = 0;
+  /// Faces whose normal points against its normal in every input pose, carried over by the rotation
+  /// that best moves each corner's one-ring from that pose onto the result: turned inside out.
+  int flipped_faces = 0;
   /// Whether every coordinate of the pose is finite (the other fields are meaningless otherwise).
   bool finite = true;
 };
@@ -35,11 +38,10 @@ class InterpolationErrorMeter {
  public:
   /// Takes the edge-space coordinates of `poses` (at least one pose).
   explicit InterpolationErrorMeter(const PoseSet& poses);
-  /// The same from precomputed pieces: `faces` (#F by 3), `edges` = edge_map(faces),
-  /// `incident_faces` = edge_faces(edges), `coordinates` of the poses, and #F `reference_areas`
-  /// (each face's smallest area over the poses).
-  InterpolationErrorMeter(Eigen::MatrixX3i faces, EdgeMap edges, AdjacencyLists incident_faces,
-                          EdgeSpaceCoordinates coordinates, Eigen::VectorXd reference_areas);
+  /// The same from precomputed pieces of `poses`: `edges` = edge_map(faces), `incident_faces` =
+  /// edge_faces(edges), `neighbours` = vertex_neighbours(faces, #V) and the poses' `coordinates`.
+  InterpolationErrorMeter(const PoseSet& poses, EdgeMap edges, AdjacencyLists incident_faces, AdjacencyLists neighbours,
+                          EdgeSpaceCoordinates coordinates);
 
   /// Errors of the #V by 3 `result` against the targets for the K `weights` (one per pose).
   /// Throws ArgumentError on mismatched sizes.
@@ -48,9 +50,13 @@ class InterpolationErrorMeter {
   const EdgeSpaceCoordinates& coordinates() const { return coordinates_; }
 
  private:
+  int flipped_faces(const Eigen::MatrixX3d& result) const;
+
+  PoseSet poses_;
   Eigen::MatrixX3i faces_;
   EdgeMap edges_;
   AdjacencyLists incident_faces_;
+  AdjacencyLists neighbours_;
   EdgeSpaceCoordinates coordinates_;
   Eigen::VectorXd reference_areas_;
 };

@@ -29,7 +29,7 @@ struct RigidTransform {
 
   /// #N by 3 transformed copy of the #N by 3 `points`.
   Eigen::MatrixX3d apply(const Eigen::MatrixX3d& points) const;
-  Eigen::RowVector3d apply(const Eigen::RowVector3d& point) const { return point * rotation.transpose() + translation; }
+  Eigen::RowVector3d apply_to_point(const Eigen::RowVector3d& point) const { return point * rotation.transpose() + translation; }
   /// The motion that applies `first` and then this one.
   RigidTransform after(const RigidTransform& first) const;
   RigidTransform inverse() const;
