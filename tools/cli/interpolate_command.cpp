@@ -51,7 +51,8 @@ Eigen::VectorXd parse_weights(const std::string& text, int pose_count) {
   if (!text.empty() && text.back() == ',') values.push_back(parse_number("", text));
   if (values.size() == 1 && pose_count == 2) return two_pose_weights(values.front());
   if (static_cast<int>(values.size()) != pose_count) {
-    usage_error("--weights: '" + text + "' has " + std::to_string(values.size()) + " entries for " +
+    usage_error("--weights: '" + text + "' has " + std::to_string(values.size()) +
+                (values.size() == 1 ? " entry for " : " entries for ") +
                 std::to_string(pose_count) + " poses (give one weight per pose, separated by commas" +
                 (pose_count == 2 ? ", or one number t for (1 - t, t))" : ")"));
   }
