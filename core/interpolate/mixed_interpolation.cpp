@@ -68,7 +68,9 @@ MixedInterpolation::MixedInterpolation(const PoseSet& poses, const EdgeMap& edge
   std::vector<const EdgeSpacePatch*> patches;
   for (const auto& joint : joints_) patches.push_back(&joint->patch());
   refinement_ = std::make_unique<ArticulatedRefinement>(patches, layout_.rigid_pieces, poses.vertex_count());
-  length_projection_ = std::make_unique<LengthProjection>(edges.edges, poses.vertex_count());
+  projection_ = std::make_unique<LocalGlobalProjection>(poses.faces(), poses.vertex_count(), edges, incident_faces,
+                                                        coordinates.hinge, coordinates.lengths.col(0),
+                                                        options.projection_hinge_weight);
   global_pose_ = std::make_unique<GlobalPose>(poses);
   times.factorization += seconds_since(start);
 
@@ -147,11 +149,17 @@ Eigen::MatrixX3d MixedInterpolation::interpolate(const Eigen::VectorXd& weights,
 
   stage = Clock::now();
   Eigen::MatrixX3d stitched = stitching_->stitch(shapes, lengths);
+  report.seconds.stitching = seconds_since(stage);
+
+  stage = Clock::now();
   const ArticulatedStats refined = refinement_->refine(stitched, lengths, angles, options_.bending_weight,
                                                        options_.refinement_iterations, 1e-4);
   report.gauss_newton_iterations += refined.iterations;
-  length_projection_->project(stitched, lengths, options_.length_passes);
-  report.seconds.stitching = seconds_since(stage);
+  report.seconds.refinement = seconds_since(stage);
+
+  stage = Clock::now();
+  projection_->project(stitched, lengths, angles, options_.projection_passes);
+  report.seconds.projection = seconds_since(stage);
 
   stage = Clock::now();
   Eigen::MatrixX3d result = global_pose_->place(stitched, weights);

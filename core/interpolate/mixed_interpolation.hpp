@@ -5,8 +5,8 @@
 // linear interpolation of their registered copies, joints by a gradient-space start in their own frame
 // (optionally refined in edge space), simultaneous registration of all components on their overlaps,
 // stitching of the joints between the rigid pieces by least squares on edge vectors, an edge-space
-// Gauss-Newton refinement of joints and rigid motions together, a least-squares pass that gives every
-// edge its interpolated length, and the global placement.
+// Gauss-Newton refinement of joints and rigid motions together, local/global passes over the whole
+// mesh towards the interpolated lengths and angles, and the global placement.
 #pragma once
 
 #include "interpolate/articulated_refinement.hpp"
@@ -15,7 +15,7 @@
 #include "interpolate/edge_stitching.hpp"
 #include "interpolate/global_pose.hpp"
 #include "interpolate/joint_layout.hpp"
-#include "interpolate/length_projection.hpp"
+#include "interpolate/local_global_projection.hpp"
 
 #include <posekit/edge_space.hpp>
 #include <posekit/interpolate.hpp>
@@ -50,7 +50,7 @@ class MixedInterpolation {
   std::unique_ptr<ComponentAlignment> alignment_;
   std::unique_ptr<EdgeStitching> stitching_;
   std::unique_ptr<ArticulatedRefinement> refinement_;
-  std::unique_ptr<LengthProjection> length_projection_;
+  std::unique_ptr<LocalGlobalProjection> projection_;
   std::unique_ptr<GlobalPose> global_pose_;
 };
 

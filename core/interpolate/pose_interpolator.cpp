@@ -25,13 +25,16 @@ void check_options(const InterpolationOptions& options, const PoseSet& poses) {
     throw ArgumentError("joint width must lie in [1, 100], got " + std::to_string(options.joint_width));
   }
   if (options.joint_iterations < 0 || options.refinement_iterations < 0 || options.edge_iterations < 0 ||
-      options.length_passes < 0) {
+      options.projection_passes < 0) {
     throw ArgumentError("iteration and pass counts must not be negative");
   }
   if (!(options.bending_weight > 0.0) || !std::isfinite(options.bending_weight)) {
     throw ArgumentError("bending weight must be positive and finite");
   }
   if (options.alignment_sweeps < 0) throw ArgumentError("alignment sweeps must not be negative");
+  if (!(options.projection_hinge_weight >= 0.0) || !std::isfinite(options.projection_hinge_weight)) {
+    throw ArgumentError("projection hinge weight must be finite and not negative");
+  }
   if (options.face_parts.size() != 0) {
     if (options.face_parts.size() != poses.faces().rows()) {
       throw ArgumentError("face_parts has " + std::to_string(options.face_parts.size()) + " ids for " +

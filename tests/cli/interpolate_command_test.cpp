@@ -66,7 +66,7 @@ TEST_F(InterpolateCommand, SeveralWeightsGiveSeveralOutputsAndOneReport) {
     }
   }
   EXPECT_LT(second.at("error").at("edge_length_relative").at("p99").get<double>(), 0.05);
-  for (const char* stage : {"blend", "joints", "alignment", "stitching", "placement", "total"}) {
+  for (const char* stage : {"blend", "joints", "alignment", "stitching", "refinement", "projection", "placement", "total"}) {
     EXPECT_TRUE(second.at("seconds").contains(stage)) << stage;
   }
   EXPECT_NE(result.out.find("mid-2.obj"), std::string::npos) << result.out;

@@ -144,6 +144,8 @@ void run_interpolate(InterpolateCommandOptions options, const std::vector<Eigen:
              {"joints", step.seconds.joints},
              {"alignment", step.seconds.alignment},
              {"stitching", step.seconds.stitching},
+             {"refinement", step.seconds.refinement},
+             {"projection", step.seconds.projection},
              {"placement", step.seconds.placement},
              {"total", step.seconds.total}}}});
     }
@@ -167,7 +169,8 @@ void run_interpolate(InterpolateCommandOptions options, const std::vector<Eigen:
             {"joint_iterations", used.joint_iterations},
             {"refinement_iterations", used.refinement_iterations},
             {"edge_iterations", used.edge_iterations},
-            {"length_passes", used.length_passes},
+            {"projection_passes", used.projection_passes},
+            {"projection_hinge_weight", used.projection_hinge_weight},
             {"bending_weight", used.bending_weight},
             {"alignment_sweeps", used.alignment_sweeps}}},
           {"segmentation",
@@ -256,8 +259,13 @@ void add_interpolate_command(CLI::App& app, int& exit_status) {
                       "Gauss-Newton iterations of all joints with the parts' rigid motions after stitching")
       ->check(CLI::Range(0, 1000))
       ->capture_default_str();
-  command->add_option("--length-passes", c.length_passes, "Final least-squares passes towards the interpolated edge lengths")
-      ->check(CLI::Range(0, 100))
+  command->add_option("--projection-passes", c.projection_passes,
+                      "Final local/global passes towards the interpolated lengths and dihedral angles")
+      ->check(CLI::Range(0, 1000))
+      ->capture_default_str();
+  command->add_option("--projection-hinge-weight", c.projection_hinge_weight,
+                      "Weight of dihedral angles against edge lengths in those passes")
+      ->check(CLI::Range(0.0, 1e6))
       ->capture_default_str();
   command->add_option("--edge-iterations", c.edge_iterations, "Gauss-Newton iterations of the edge method")
       ->check(CLI::Range(0, 10000))

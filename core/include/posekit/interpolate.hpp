@@ -47,8 +47,10 @@ struct InterpolationOptions {
   int joint_iterations = 0;
   int refinement_iterations = 2;
   int edge_iterations = 20;
-  /// Least-squares passes that give every edge its interpolated length at the end (mixit, >= 0).
-  int length_passes = 1;
+  /// Local/global passes over the whole mesh towards the interpolated edge lengths and dihedral angles
+  /// at the end (mixit, >= 0), with hinges weighing this much against an edge's length (>= 0).
+  int projection_passes = 8;
+  double projection_hinge_weight = 0.25;
   /// Weight of squared dihedral-angle errors (radians) against squared relative edge-length errors in
   /// the edge-space fit (> 0).
   double bending_weight = 0.1;
@@ -74,10 +76,12 @@ struct PrecomputationTimes {
   double edge_space = 0, segmentation = 0, layout = 0, registration = 0, factorization = 0, total = 0;
 };
 
-/// Seconds spent on one weight vector. For mixit, "stitching" includes the joint refinement and the
-/// length pass; for the edge method "joints" is the whole-mesh reconstruction.
+/// Seconds spent on one weight vector, by stage: the linear blends (rigid parts, edge-space targets),
+/// the joints' own reconstruction (for the edge method: the whole mesh), the alignment of the
+/// components, the stitching, the joint refinement, the final local/global passes and the global
+/// placement (stages a method does not have stay 0).
 struct InterpolationTimes {
-  double blend = 0, joints = 0, alignment = 0, stitching = 0, placement = 0, total = 0;
+  double blend = 0, joints = 0, alignment = 0, stitching = 0, refinement = 0, projection = 0, placement = 0, total = 0;
 };
 
 struct InterpolationStepReport {
