@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace posekit::interpolation {
 namespace {
@@ -16,6 +17,8 @@ namespace {
 constexpr double kAnchorWeight = 1e-6;
 // A hinge far off its angle (a fold of the inputs) asks for no more than this turn per pass.
 constexpr double kLargestTurn = 0.1;
+// Earlier passes that Anderson acceleration mixes.
+constexpr int kHistory = 3;
 
 // The side of face f that is the mesh edge between u and v.
 int side_between(const Eigen::MatrixX3i& faces, const EdgeMap& edges, int f, int u, int v) {
@@ -118,7 +121,9 @@ void LocalGlobalProjection::project(Eigen::MatrixX3d& x, const Eigen::VectorXd& 
     if (length > 0.0) vector *= lengths(e) / length;
     return vector;
   };
-  for (int pass = 0; pass < passes; ++pass) {
+  // One local/global pass: G(y).
+  const auto pass_from = [&](const Eigen::MatrixX3d& x_in) {
+    const Eigen::MatrixX3d& x = x_in;
     // Local: each hinge's wings turned about the hinge edge, c by -delta / 2 and d by +delta / 2.
     tbb::parallel_for(0, hinge_count, [&](int index) {
       const MeshHinge& h = hinges_[static_cast<size_t>(index)];
@@ -151,7 +156,47 @@ void LocalGlobalProjection::project(Eigen::MatrixX3d& x, const Eigen::VectorXd& 
       for (const int e : vertex_edges_[v]) sum += edges_(e, 1) == v ? edge_targets.row(e) : Eigen::RowVector3d(-edge_targets.row(e));
       rhs.row(v) = sum;
     });
-    x = solver_.solve(rhs);
+    return Eigen::MatrixX3d(solver_.solve(rhs));
+  };
+  // Anderson acceleration of the fixed-point iteration x = G(x): the next point mixes the last few
+  // G values so that the mixed residual G(x) - x is smallest; it restarts whenever a residual grows.
+  std::vector<Eigen::VectorXd> g_history;
+  std::vector<Eigen::VectorXd> f_history;
+  double last_residual = std::numeric_limits<double>::infinity();
+  for (int pass = 0; pass < passes; ++pass) {
+    const Eigen::MatrixX3d g = pass_from(x);
+    const Eigen::VectorXd g_flat = Eigen::Map<const Eigen::VectorXd>(g.data(), g.size());
+    const Eigen::VectorXd f = g_flat - Eigen::Map<const Eigen::VectorXd>(x.data(), x.size());
+    const double residual = f.norm();
+    if (residual > last_residual) {
+      g_history.clear();
+      f_history.clear();
+    }
+    last_residual = residual;
+    g_history.push_back(g_flat);
+    f_history.push_back(f);
+    if (static_cast<int>(g_history.size()) > kHistory + 1) {
+      g_history.erase(g_history.begin());
+      f_history.erase(f_history.begin());
+    }
+    const int m = static_cast<int>(f_history.size()) - 1;
+    if (m == 0) {
+      x = g;
+      continue;
+    }
+    Eigen::MatrixXd df(f.size(), m);
+    Eigen::MatrixXd dg(f.size(), m);
+    for (int j = 0; j < m; ++j) {
+      df.col(j) = f_history[static_cast<size_t>(j) + 1] - f_history[static_cast<size_t>(j)];
+      dg.col(j) = g_history[static_cast<size_t>(j) + 1] - g_history[static_cast<size_t>(j)];
+    }
+    const Eigen::VectorXd gamma = (df.transpose() * df).ldlt().solve(df.transpose() * f);
+    const Eigen::VectorXd next = g_flat - dg * gamma;
+    if (!next.allFinite()) {
+      x = g;
+      continue;
+    }
+    x = Eigen::Map<const Eigen::MatrixX3d>(next.data(), x.rows(), 3);
   }
 }
 

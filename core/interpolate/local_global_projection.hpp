@@ -3,7 +3,8 @@
 // at its interpolated length, and every hinge asks for its two wings turned about the hinge edge by
 // half the angle it is off each (the wing edges' directions, again at their interpolated lengths);
 // globally, positions by least squares on all these edge vectors. The matrix is a weighted graph
-// Laplacian that depends on the connectivity only: factorized once, each pass costs one solve.
+// Laplacian that depends on the connectivity only: factorized once, each pass costs one solve. The
+// passes are a fixed-point iteration, sped up by Anderson acceleration (mixing the last few passes).
 // Parts that are not quite rigid come out of vertex interpolation slightly shrunk and bent; these
 // passes give their edges back their lengths and their hinges their angles.
 #pragma once

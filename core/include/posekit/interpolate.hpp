@@ -49,8 +49,8 @@ struct InterpolationOptions {
   int edge_iterations = 20;
   /// Local/global passes over the whole mesh towards the interpolated edge lengths and dihedral angles
   /// at the end (mixit, >= 0), with hinges weighing this much against an edge's length (>= 0).
-  int projection_passes = 8;
-  double projection_hinge_weight = 0.25;
+  int projection_passes = 5;
+  double projection_hinge_weight = 0.5;
   /// Weight of squared dihedral-angle errors (radians) against squared relative edge-length errors in
   /// the edge-space fit (> 0).
   double bending_weight = 0.1;
