@@ -106,11 +106,15 @@ EdgeSpaceReconstruction::EdgeSpaceReconstruction(EdgeSpacePatch patch, const Eig
     stretches_.push_back(std::move(stretches));
   }
 
-  // Gauss-Newton normal equations: blocks for edges and for the four corners of every hinge.
+}
+
+void EdgeSpaceReconstruction::prepare_gauss_newton() {
+  if (gauss_newton_ready_) return;
+  // Normal equations: blocks for edges and for the four corners of every hinge.
   std::vector<std::pair<int, int>> vertex_pairs;
   for (int e = 0; e < patch_.edge_count(); ++e) vertex_pairs.emplace_back(patch_.edges(e, 0), patch_.edges(e, 1));
   for (const Hinge& h : patch_.hinges) vertex_pairs.emplace_back(h.c, h.d);
-  normal_matrix_ = BlockSparseMatrix3(vertex_count, vertex_pairs);
+  normal_matrix_ = BlockSparseMatrix3(patch_.vertex_count(), vertex_pairs);
   for (int e = 0; e < patch_.edge_count(); ++e) {
     edge_slots_.push_back(normal_matrix_.slot(patch_.edges(e, 0), patch_.edges(e, 1)));
     edge_slots_.push_back(normal_matrix_.slot(patch_.edges(e, 1), patch_.edges(e, 0)));
@@ -123,6 +127,7 @@ EdgeSpaceReconstruction::EdgeSpaceReconstruction(EdgeSpacePatch patch, const Eig
     }
   }
   normal_solver_.analyzePattern(normal_matrix_.matrix());
+  gauss_newton_ready_ = true;
 }
 
 Eigen::MatrixX3d EdgeSpaceReconstruction::gradient_guess(const Eigen::VectorXd& weights) const {
@@ -189,6 +194,7 @@ ReconstructionStats EdgeSpaceReconstruction::refine(Eigen::MatrixX3d& x, const E
   ReconstructionStats stats;
   double current = energy(x, lengths, angles, mu);
   stats.initial_energy = current;
+  if (options.max_iterations > 0) prepare_gauss_newton();
   std::vector<Eigen::Matrix<double, 4, 3>> gradients(static_cast<size_t>(hinge_count));
   std::vector<double> residuals(static_cast<size_t>(hinge_count));
   for (int iteration = 0; iteration < options.max_iterations && current > 0.0; ++iteration) {

@@ -70,6 +70,8 @@ class EdgeSpaceReconstruction {
   std::vector<std::vector<Eigen::Vector3d>> logs_;       // [k - 1][local face]
   std::vector<std::vector<Eigen::Matrix3d>> stretches_;  // [k - 1][local face]
   Solver gradient_solver_;
+  void prepare_gauss_newton();  // builds the pattern below on first use
+  bool gauss_newton_ready_ = false;
   BlockSparseMatrix3 normal_matrix_;                   // Gauss-Newton: one 3 x 3 block per vertex
   std::vector<BlockSparseMatrix3::Slot> edge_slots_;   // per edge: (a, b), (b, a)
   std::vector<BlockSparseMatrix3::Slot> hinge_slots_;  // per hinge: 16 blocks of (a, b, c, d) x (a, b, c, d)

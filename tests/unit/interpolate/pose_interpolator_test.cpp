@@ -6,6 +6,9 @@
 #include <posekit/error.hpp>
 #include <posekit/geometry.hpp>
 #include <posekit/interpolate.hpp>
+#include <posekit/rigid_motion.hpp>
+
+#include <Eigen/Geometry>
 
 #include <gtest/gtest.h>
 
@@ -118,6 +121,25 @@ TEST(PoseInterpolator, FourPosesWithEqualWeights) {
   EXPECT_EQ(error.collapsed_faces, 0);
   EXPECT_EQ(error.flipped_faces, 0);
   EXPECT_LT(error.edge_length.p99, 0.03);
+}
+
+TEST(PoseInterpolator, ARigidMotionKeepsTheShapeAndTurnsHalfway) {
+  const PoseSet rest = demo_arm({}, 16);
+  PoseSet poses(rest.faces());
+  poses.add_pose(rest.pose(0));
+  const Eigen::Matrix3d quarter = Eigen::AngleAxisd(0.5 * 3.14159265358979323846, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  poses.add_pose((rest.pose(0) * quarter.transpose()).rowwise() + Eigen::RowVector3d(2, 1, 0));
+  for (const InterpolationMethod method : {InterpolationMethod::mixit, InterpolationMethod::edge}) {
+    PoseInterpolator interpolator(poses, with_method(method));
+    EXPECT_EQ(interpolator.layout().joints, 0) << to_string(method);
+    const Eigen::MatrixX3d x = interpolator.interpolate(two_pose_weights(0.5));
+    // The same shape, turned by 45 degrees about z, centred halfway.
+    const RigidTransform fit = best_rigid_transform(rest.pose(0), x);
+    EXPECT_LT(largest_distance(fit.apply(rest.pose(0)), x), 1e-6) << to_string(method);
+    EXPECT_NEAR(Eigen::AngleAxisd(fit.rotation).angle(), 0.25 * 3.14159265358979323846, 1e-6) << to_string(method);
+    const Eigen::RowVector3d centre = 0.5 * (poses.pose(0).colwise().mean() + poses.pose(1).colwise().mean());
+    EXPECT_LT((x.colwise().mean() - centre).norm(), 1e-9) << to_string(method);
+  }
 }
 
 TEST(PoseInterpolator, UserPartsAreUsed) {
