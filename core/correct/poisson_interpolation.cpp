@@ -1,19 +1,17 @@
 #include <posekit/error.hpp>
+#include <posekit/face_deformation.hpp>
 #include <posekit/poisson_interpolation.hpp>
+#include <posekit/rigid_motion.hpp>
 #include <posekit/topology.hpp>
 
 #include <Eigen/Geometry>
-#include <Eigen/SVD>
 #include <Eigen/SparseCholesky>
 #include <tbb/parallel_for.h>
 
 #include <cmath>
-#include <queue>
 
 namespace posekit {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Translation (per connected component) is not fixed by gradients; a weak pull towards linear
 // interpolation of the vertices fixes it without visibly bending the shape.
@@ -23,20 +21,6 @@ struct FaceFrame {
   Eigen::Matrix3d gradient_operator;  // columns: gradients of the three hat functions
   double area = 0.0;
 };
-
-// A face's edge vectors plus its normal scaled to the square root of twice the area, so that the
-// deformation gradient treats the normal direction like the in-plane ones.
-Eigen::Matrix3d face_basis(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-  const Eigen::Vector3d e1 = b - a;
-  const Eigen::Vector3d e2 = c - a;
-  const Eigen::Vector3d cross = e1.cross(e2);
-  const double norm = cross.norm();
-  Eigen::Matrix3d basis;
-  basis.col(0) = e1;
-  basis.col(1) = e2;
-  basis.col(2) = norm > 0.0 ? Eigen::Vector3d(cross / std::sqrt(norm)) : Eigen::Vector3d::Zero();
-  return basis;
-}
 
 }  // namespace
 
@@ -50,79 +34,6 @@ struct PoissonInterpolator::State {
   Eigen::VectorXd anchor_weights;              // per vertex
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
 };
-
-namespace {
-
-// Below this angle the principal logarithm is unambiguous and varies continuously between faces.
-constexpr double kUnambiguousAngle = 0.9 * kPi;
-
-// A rotation by nearly pi has two logarithms far apart (theta * axis and (theta - 2 pi) * axis);
-// picking them face by face would send neighbours around opposite ways. Faces rotated by less than
-// kUnambiguousAngle keep their principal logarithm; the others are reached breadth-first from them
-// and take the branch closest to the mean of their already-assigned neighbours.
-std::vector<Eigen::Vector3d> consistent_rotation_logs(const std::vector<Eigen::AngleAxisd>& rotations,
-                                                      const Eigen::MatrixX3i& faces) {
-  const int face_count = static_cast<int>(faces.rows());
-  const EdgeMap edges = edge_map(faces);
-  const AdjacencyLists faces_of_edge = edge_faces(edges);
-  std::vector<Eigen::Vector3d> logs(static_cast<size_t>(face_count));
-  std::vector<char> assigned(static_cast<size_t>(face_count), 0);
-  std::queue<int> pending;
-  const auto principal = [&](int f) {
-    const Eigen::AngleAxisd& r = rotations[static_cast<size_t>(f)];
-    return Eigen::Vector3d(r.angle() * r.axis());
-  };
-  const auto assign_from_neighbours = [&](int face) {
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    int count = 0;
-    for (int corner = 0; corner < 3; ++corner) {
-      for (int neighbour : faces_of_edge[edges.face_edges(face, corner)]) {
-        if (neighbour == face || !assigned[static_cast<size_t>(neighbour)]) continue;
-        mean += logs[static_cast<size_t>(neighbour)];
-        ++count;
-      }
-    }
-    const Eigen::AngleAxisd& r = rotations[static_cast<size_t>(face)];
-    const Eigen::Vector3d first = r.angle() * r.axis();
-    const Eigen::Vector3d second = (r.angle() - 2.0 * kPi) * r.axis();
-    if (count > 0) mean /= count;
-    logs[static_cast<size_t>(face)] =
-        count == 0 || (first - mean).squaredNorm() <= (second - mean).squaredNorm() ? first : second;
-    assigned[static_cast<size_t>(face)] = 1;
-  };
-  const auto spread = [&]() {
-    while (!pending.empty()) {
-      const int face = pending.front();
-      pending.pop();
-      for (int corner = 0; corner < 3; ++corner) {
-        for (int neighbour : faces_of_edge[edges.face_edges(face, corner)]) {
-          if (assigned[static_cast<size_t>(neighbour)]) continue;
-          assign_from_neighbours(neighbour);
-          pending.push(neighbour);
-        }
-      }
-    }
-  };
-  for (int f = 0; f < face_count; ++f) {
-    if (rotations[static_cast<size_t>(f)].angle() < kUnambiguousAngle) {
-      logs[static_cast<size_t>(f)] = principal(f);
-      assigned[static_cast<size_t>(f)] = 1;
-      pending.push(f);
-    }
-  }
-  spread();
-  // Components rotated by nearly pi everywhere: seed each with its least rotated face.
-  for (int f = 0; f < face_count; ++f) {
-    if (assigned[static_cast<size_t>(f)]) continue;
-    logs[static_cast<size_t>(f)] = principal(f);
-    assigned[static_cast<size_t>(f)] = 1;
-    pending.push(f);
-    spread();
-  }
-  return logs;
-}
-
-}  // namespace
 
 PoissonInterpolator::PoissonInterpolator(const Eigen::MatrixX3d& source, const Eigen::MatrixX3d& target,
                                          const Eigen::MatrixX3i& faces)
@@ -164,17 +75,9 @@ PoissonInterpolator::PoissonInterpolator(const Eigen::MatrixX3d& source, const E
     } else {
       frame.gradient_operator.setZero();  // a degenerate face constrains nothing
     }
-    // Polar decomposition through the SVD, with the reflection (if any) kept in the stretch.
-    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(deformation, Eigen::ComputeFullU | Eigen::ComputeFullV);
-    Eigen::Vector3d singular = svd.singularValues();
-    Eigen::Matrix3d u = svd.matrixU();
-    if ((u * svd.matrixV().transpose()).determinant() < 0.0) {
-      u.col(2) *= -1.0;
-      singular(2) *= -1.0;
-    }
-    const Eigen::Matrix3d rotation = u * svd.matrixV().transpose();
-    s.stretches[static_cast<size_t>(f)] = svd.matrixV() * singular.asDiagonal() * svd.matrixV().transpose();
-    rotations[static_cast<size_t>(f)] = Eigen::AngleAxisd(rotation);
+    const PolarDecomposition polar = polar_decomposition(deformation);
+    s.stretches[static_cast<size_t>(f)] = polar.stretch;
+    rotations[static_cast<size_t>(f)] = Eigen::AngleAxisd(polar.rotation);
   });
   s.rotation_logs = consistent_rotation_logs(rotations, faces);
 
