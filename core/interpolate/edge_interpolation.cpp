@@ -54,7 +54,7 @@ Eigen::MatrixX3d EdgeInterpolation::interpolate(const Eigen::VectorXd& weights, 
   const auto start = Clock::now();
   auto stage = Clock::now();
   const EdgeSpacePatch& patch = reconstruction_->patch();
-  const Eigen::VectorXd all_lengths = coordinates_.combined_lengths(weights);
+  const Eigen::VectorXd all_lengths = coordinates_.combined_positive_lengths(weights);
   const Eigen::VectorXd all_angles = coordinates_.combined_angles(weights);
   Eigen::VectorXd lengths(patch.edge_count());
   Eigen::VectorXd angles(patch.hinge_count());

@@ -1,5 +1,5 @@
 // The edge-space baseline: the whole mesh interpolated in edge lengths and dihedral angles and
-// reconstructed by Gauss-Newton from a face-frame guess, then placed by the global pose parameters.
+// reconstructed by Gauss-Newton from a gradient-space start, then placed by the global pose parameters.
 #pragma once
 
 #include "interpolate/edge_space_reconstruction.hpp"

@@ -97,7 +97,7 @@ Eigen::MatrixX3d MixedInterpolation::interpolate(const Eigen::VectorXd& weights,
     for (int k = 1; k < pose_count; ++k) blend += weights(k) * aligned_pieces_[p][static_cast<size_t>(k)];
     shapes[p] = std::move(blend);
   });
-  const Eigen::VectorXd lengths = coordinates_.combined_lengths(weights);
+  const Eigen::VectorXd lengths = coordinates_.combined_positive_lengths(weights);
   const Eigen::VectorXd angles = coordinates_.combined_angles(weights);
   report.seconds.blend = seconds_since(stage);
 

@@ -14,6 +14,10 @@ import sys
 METHODS = ("mixit", "edge", "vertex")
 
 
+def milliseconds(value):
+    return f"{value:.1f}" if value >= 1.0 else f"{value:.2g}"
+
+
 def main(path):
     with open(path) as stream:
         report = json.load(stream)
@@ -43,7 +47,7 @@ def main(path):
         cells = [pose_set, weight]
         for method in METHODS:
             m = methods.get(method)
-            cells += ["-", "-", "-"] if m is None else [f"{m['len']:.2f}", f"{m['dih']:.2f}", f"{m['time']:.1f}"]
+            cells += ["-", "-", "-"] if m is None else [f"{m['len']:.2f}", f"{m['dih']:.2f}", milliseconds(m["time"])]
         mixit, edge = methods.get("mixit"), methods.get("edge")
         if mixit and edge and edge["len"] > 0 and edge["dih"] > 0:
             cells += [f"{mixit['len'] / edge['len']:.2f}", f"{mixit['dih'] / edge['dih']:.2f}"]

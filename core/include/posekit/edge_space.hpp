@@ -32,6 +32,11 @@ struct EdgeSpaceCoordinates {
   int pose_count() const { return static_cast<int>(lengths.cols()); }
   /// Linear combination of the poses' lengths with the K `weights`: #E values.
   Eigen::VectorXd combined_lengths(const Eigen::VectorXd& weights) const { return lengths * weights; }
+  /// The same, but never below a thousandth of the edge's shortest length in any pose: weights that
+  /// extrapolate far may ask for lengths at or below zero, which no mesh has.
+  Eigen::VectorXd combined_positive_lengths(const Eigen::VectorXd& weights) const {
+    return (lengths * weights).cwiseMax(1e-3 * lengths.rowwise().minCoeff());
+  }
   /// Linear combination of the poses' (unwrapped) angles with the K `weights`: #E values, NaN off hinges.
   Eigen::VectorXd combined_angles(const Eigen::VectorXd& weights) const { return angles * weights; }
 };

@@ -2,10 +2,12 @@
 // options are checked, MixIT and the edge-space baseline keep the bones' length where linear vertex
 // interpolation shortens them, and meshes in several pieces or with stray vertices work.
 #include "interpolation_fixtures.hpp"
+#include "test_data.hpp"
 
 #include <posekit/error.hpp>
 #include <posekit/geometry.hpp>
 #include <posekit/interpolate.hpp>
+#include <posekit/mesh_io.hpp>
 #include <posekit/rigid_motion.hpp>
 
 #include <Eigen/Geometry>
@@ -61,6 +63,28 @@ TEST_P(EveryMethod, ReportsItsStagesAndIsRepeatable) {
   EXPECT_EQ(interpolator.interpolate(two_pose_weights(0.3)), first);
   EXPECT_GT(interpolator.precomputation_seconds().total, 0.0);
   EXPECT_EQ(interpolator.layout().edge_dimension, 2LL * edge_map(arm.faces()).edges.rows());
+}
+
+TEST_P(EveryMethod, ExtrapolatesWithoutNan) {
+  const PoseSet arm = demo_arm({60.0}, 16);
+  PoseInterpolator interpolator(arm, with_method(GetParam()));
+  for (const double t : {-0.5, 1.5, 3.0}) {
+    const Eigen::MatrixX3d x = interpolator.interpolate(two_pose_weights(t));
+    EXPECT_TRUE(x.allFinite()) << to_string(GetParam()) << " t = " << t;
+  }
+}
+
+TEST_P(EveryMethod, HandlesATetrahedron) {
+  const Mesh tetrahedron = read_mesh(project_test_data() / "valid" / "tetrahedron.obj");
+  PoseSet poses(tetrahedron.faces);
+  poses.add_pose(tetrahedron.vertices);
+  Eigen::MatrixX3d stretched = tetrahedron.vertices;
+  stretched.col(2) *= 2.0;
+  poses.add_pose(stretched);
+  PoseInterpolator interpolator(poses, with_method(GetParam()));
+  const Eigen::MatrixX3d x = interpolator.interpolate(two_pose_weights(0.5));
+  ASSERT_TRUE(x.allFinite()) << to_string(GetParam());
+  EXPECT_TRUE(interpolator.error(x, two_pose_weights(0.5)).finite);
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, EveryMethod, ::testing::ValuesIn(kMethods),
