@@ -80,26 +80,19 @@ Eigen::MatrixX3d BlendedDeformer::State::arap_right_side(const std::vector<Eigen
     stacked.middleRows<3>(3 * j) = coefficients(j / cluster_count) * rotations[static_cast<size_t>(j)].transpose();
   }
   Eigen::MatrixX3d side = Eigen::MatrixX3d::Zero(atom_count(), 3);
-  accumulate_blocks(0, blocks, stacked, side);
-  return side;
-}
-
-Eigen::MatrixXd BlendedDeformer::State::arap_right_sides(const std::vector<Eigen::Matrix3d>& rotations,
-                                                         const Eigen::VectorXd& coefficients) const {
+  // Examples of weight zero (all but one in the minimal stage) add nothing: skip their columns.
   const int k_count = example_count();
-  const int blocks = block_count();
-  Eigen::MatrixX3d stacked(3 * blocks, 3);
-  for (int j = 0; j < blocks; ++j) {
-    stacked.middleRows<3>(3 * j) = coefficients(j / cluster_count) * rotations[static_cast<size_t>(j)].transpose();
+  for (int k = 0; k < k_count;) {
+    if (coefficients(k) == 0.0) {
+      ++k;
+      continue;
+    }
+    int end = k + 1;
+    while (end < k_count && coefficients(end) != 0.0) ++end;
+    accumulate_blocks(k * cluster_count, end * cluster_count, stacked, side);
+    k = end;
   }
-  Eigen::MatrixXd sides(atom_count(), 3 * k_count);
-  Eigen::MatrixX3d side(atom_count(), 3);
-  for (int k = 0; k < k_count; ++k) {
-    side.setZero();
-    accumulate_blocks(k * cluster_count, (k + 1) * cluster_count, stacked, side);
-    sides.middleCols<3>(3 * k) = side;
-  }
-  return sides;
+  return side;
 }
 
 Eigen::MatrixX3d BlendedDeformer::State::initial_solve(const Eigen::MatrixX3d& right_side, double& energy) const {
@@ -192,6 +185,33 @@ BlendResult BlendedDeformer::deform(const Eigen::MatrixX3d& targets, const Blend
   const BlendOptions& o = s.options;
   const double total_example_energy = s.example_energy.sum();
 
+  // The global step, for fixed rotations, minimizes over the maps T and the scale s together: the
+  // energy is quadratic in (T, s), with T = Q^-1 (b_c + s b_R) = T_c + s T_R, so s has a closed form
+  // s = b_R.T_c / (N - b_R.T_R). Alternating s with T instead converges slowly when the scale is far
+  // from 1. T_c is the same in every step.
+  const Eigen::MatrixX3d constrained_maps = s.global.solve(constraint_side);
+  struct GlobalStep {
+    Eigen::MatrixX3d transformations;
+    double scale = 1.0;
+    double energy = 0.0;
+  };
+  const auto global_step = [&](const Eigen::MatrixX3d& arap_side, double example_energy, double fallback_scale) {
+    GlobalStep step;
+    const Eigen::MatrixX3d arap_maps = s.global.solve(arap_side);
+    step.scale = 1.0;
+    if (o.estimate_scale) {
+      const double curvature = example_energy - arap_side.cwiseProduct(arap_maps).sum();
+      const double slope = arap_side.cwiseProduct(constrained_maps).sum();
+      // The curvature is positive whenever the ARAP matrix is (it is the Schur complement of the
+      // joint quadratic); round-off aside, keep the alternating scale otherwise.
+      step.scale = curvature > 1e-12 * example_energy ? std::max(slope / curvature, kMinimumScale) : fallback_scale;
+    }
+    step.transformations = constrained_maps + step.scale * arap_maps;
+    const Eigen::MatrixX3d side = constraint_side + step.scale * arap_side;
+    step.energy = constant + step.scale * step.scale * example_energy - step.transformations.cwiseProduct(side).sum();
+    return step;
+  };
+
   BlendResult result;
   Iterate current;
   current.transformations = start_from.transformations;
@@ -203,11 +223,12 @@ BlendResult BlendedDeformer::deform(const Eigen::MatrixX3d& targets, const Blend
   const int minimal_count = minimal_iterations >= 0 ? minimal_iterations : o.minimal_iterations;
   for (int iteration = 0; iteration < average_count; ++iteration) {
     s.local_step(current.transformations, rotations, dots);
-    const double scale = s.closed_form_scale(dots.sum(), total_example_energy);
-    const Eigen::VectorXd coefficients = Eigen::VectorXd::Constant(k_count, scale / k_count);
-    const Eigen::MatrixX3d side = constraint_side + s.arap_right_side(rotations, coefficients);
-    current.transformations = s.global.solve(side);
-    current.energy = constant + scale * scale * total_example_energy / k_count - current.transformations.cwiseProduct(side).sum();
+    const GlobalStep step =
+        global_step(s.arap_right_side(rotations, Eigen::VectorXd::Constant(k_count, 1.0 / k_count)),
+                    total_example_energy / k_count, s.closed_form_scale(dots.sum(), total_example_energy));
+    const double scale = step.scale;
+    current.transformations = step.transformations;
+    current.energy = step.energy;
     current.rotations = rotations;
     current.weights = Eigen::VectorXd::Constant(k_count, 1.0 / k_count);
     current.scales = Eigen::VectorXd::Constant(k_count, scale);
@@ -225,26 +246,24 @@ BlendResult BlendedDeformer::deform(const Eigen::MatrixX3d& targets, const Blend
     for (int k = 0; k < k_count; ++k) {
       scales(k) = s.closed_form_scale(dots(k), s.example_energy(k));
     }
-    Eigen::MatrixXd sides = s.arap_right_sides(rotations, scales);
-    for (int k = 0; k < k_count; ++k) sides.middleCols<3>(3 * k) += constraint_side;
-    // With Q = L L^T the minimum over T of the energy for example k is c_k - b_k^T Q^-1 b_k
-    // = c_k - |L^-1 b_k|^2: one forward substitution per example decides, and only the chosen one
-    // is solved to the end.
-    Eigen::MatrixXd forward = sides;
-    s.global.matrixL().solveInPlace(forward);
+    // Block coordinate descent on the minimal energy: for the current maps, the example (with its
+    // rotations and scale) of the least ARAP energy s^2 N_k - 2 s <R, S> + (a term common to all
+    // examples), then the global step for that example alone.
     int best = 0;
-    double best_energy = std::numeric_limits<double>::infinity();
+    double best_arap = std::numeric_limits<double>::infinity();
     for (int k = 0; k < k_count; ++k) {
-      const double energy =
-          constant + scales(k) * scales(k) * s.example_energy(k) - forward.middleCols<3>(3 * k).squaredNorm();
-      if (energy < best_energy) {
-        best_energy = energy;
+      const double arap = scales(k) * (scales(k) * s.example_energy(k) - 2.0 * dots(k));
+      if (arap < best_arap) {
+        best_arap = arap;
         best = k;
       }
     }
-    Eigen::MatrixX3d solution = forward.middleCols<3>(3 * best);
-    s.global.matrixU().solveInPlace(solution);
-    current.transformations = solution;
+    Eigen::VectorXd one_hot = Eigen::VectorXd::Zero(k_count);
+    one_hot(best) = 1.0;
+    const GlobalStep step = global_step(s.arap_right_side(rotations, one_hot), s.example_energy(best), scales(best));
+    scales(best) = step.scale;
+    const double best_energy = step.energy;
+    current.transformations = step.transformations;
     current.energy = best_energy;
     current.rotations = rotations;
     current.weights = Eigen::VectorXd::Zero(k_count);

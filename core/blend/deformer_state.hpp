@@ -55,10 +55,9 @@ struct BlendedDeformer::State {
   /// side += sum over blocks j in [first, last) of G_j m_j (G_j: the three columns of block j, m_j:
   /// the 3 by 3 matrix at rows 3j of `stacked`), streaming the columns once, rows split over threads.
   void accumulate_blocks(int first, int last, const Eigen::MatrixX3d& stacked, Eigen::MatrixX3d& side) const;
-  /// N by 3 ARAP part of the global step's right side: sum_k coefficients(k) sum_c G_kc R_kc^T.
+  /// N by 3 ARAP part of the global step's right side: sum_k coefficients(k) sum_c G_kc R_kc^T
+  /// (examples with coefficient 0 cost nothing).
   Eigen::MatrixX3d arap_right_side(const std::vector<Eigen::Matrix3d>& rotations, const Eigen::VectorXd& coefficients) const;
-  /// The same for each example separately: N by 3K, block k = G_k R_k^T times coefficients(k).
-  Eigen::MatrixXd arap_right_sides(const std::vector<Eigen::Matrix3d>& rotations, const Eigen::VectorXd& coefficients) const;
   /// The closed-form scale, sum <R, S> / sum c_e |e|^2 over the examples concerned (1 when
   /// options.estimate_scale is off): the minimizer of the energy for fixed rotations and maps.
   double closed_form_scale(double dot, double energy) const;

@@ -101,8 +101,25 @@ TEST_F(ArmDeformation, RecoversTheScaleOfTheConstraints) {
   const std::vector<int> points = spread_vertices(target, 12);
   deformer->set_constraints(vertex_constraints(points));
   const BlendResult result = deformer->deform(rows_of(target, points));
-  EXPECT_NEAR(result.scale, 1.5, 0.015);
+  EXPECT_NEAR(result.scale, 1.5, 1e-3);
   EXPECT_LT(max_distortion(result.vertices, target, examples->faces()), 0.01);
+}
+
+TEST_F(ArmDeformation, ScalingTheConstraintsScalesTheResult) {
+  // Every term of the energy is quadratic in (maps, targets, scale) together, and the affine maps
+  // hold translations: constraints 1.5 times larger about any point give the result 1.5 times larger
+  // about that point, and 1.5 times the scale, whatever the scale at the original size.
+  const Eigen::MatrixX3d& target = targets->pose(2);
+  const std::vector<int> points = spread_vertices(target, 10);
+  deformer->set_constraints(vertex_constraints(points));
+  const Eigen::RowVector3d center(0.7, -2.0, 1.1);
+  const Eigen::MatrixX3d bigger = ((target.rowwise() - center) * 1.5).rowwise() + center;
+  const BlendResult small = deformer->deform(rows_of(target, points));
+  const BlendResult large = deformer->deform(rows_of(bigger, points));
+  EXPECT_NEAR(large.scale / small.scale, 1.5, 1e-6);
+  const Eigen::MatrixX3d expected = ((small.vertices.rowwise() - center) * 1.5).rowwise() + center;
+  const double size = (target.colwise().maxCoeff() - target.colwise().minCoeff()).norm();
+  EXPECT_LT((large.vertices - expected).cwiseAbs().maxCoeff(), 1e-6 * size);
 }
 
 TEST_F(ArmDeformation, WithoutTheScaleStepABiggerTargetIsFitWorse) {
