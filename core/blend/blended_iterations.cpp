@@ -258,6 +258,33 @@ BlendResult BlendedDeformer::deform(const Eigen::MatrixX3d& targets, const Blend
         best = k;
       }
     }
+    if (o.example_choice_after_solve) {
+      // The example of the least energy after its own global step: with Q = L L^T the minimum over
+      // (T, s) is c - |f_c + s f_k|^2 + s^2 N_k, f = L^-1 b, one forward substitution per example.
+      Eigen::MatrixXd sides(s.atom_count(), 3 * (k_count + 1));
+      sides.leftCols<3>() = constraint_side;
+      for (int k = 0; k < k_count; ++k) {
+        Eigen::VectorXd only = Eigen::VectorXd::Zero(k_count);
+        only(k) = 1.0;
+        sides.middleCols<3>(3 * (k + 1)) = s.arap_right_side(rotations, only);
+      }
+      s.global.matrixL().solveInPlace(sides);
+      const auto f_c = sides.leftCols<3>();
+      double lowest = std::numeric_limits<double>::infinity();
+      for (int k = 0; k < k_count; ++k) {
+        const auto f_k = sides.middleCols<3>(3 * (k + 1));
+        const double curvature = s.example_energy(k) - f_k.squaredNorm();
+        double scale = scales(k);
+        if (o.estimate_scale && curvature > 1e-12 * s.example_energy(k)) {
+          scale = std::max(f_c.cwiseProduct(f_k).sum() / curvature, kMinimumScale);
+        }
+        const double energy = scale * scale * s.example_energy(k) - (f_c + scale * f_k).squaredNorm();
+        if (energy < lowest) {
+          lowest = energy;
+          best = k;
+        }
+      }
+    }
     Eigen::VectorXd one_hot = Eigen::VectorXd::Zero(k_count);
     one_hot(best) = 1.0;
     const GlobalStep step = global_step(s.arap_right_side(rotations, one_hot), s.example_energy(best), scales(best));

@@ -10,7 +10,7 @@
 //     correspondence lies within 5 % of the square root of the area of their true position.
 //
 // posekit_blend_evaluation [--data DIR] [--sets a,b,...] [--poses N] [--skip-registration]
-//                          [--feature-rings N] [--verbose]
+//                          [--feature-rings N] [--choice-after-solve] [--verbose]
 #include <posekit/blended_deformation.hpp>
 #include <posekit/geometry.hpp>
 #include <posekit/mesh_io.hpp>
@@ -44,6 +44,7 @@ struct Settings {
   bool registration = true;
   int feature_rings = ScanFitOptions{}.feature_rings;
   bool verbose = false;
+  BlendOptions blend;
 };
 
 std::vector<int> spread_vertices(const Eigen::MatrixX3d& vertices, int count, std::vector<int> chosen = {}) {
@@ -272,7 +273,7 @@ SetResults evaluate(const Settings& settings, const std::string& name) {
     for (int k = 0; k < all.pose_count(); ++k) {
       if (k != h) examples.add_pose(all.pose(k), all.pose_name(k));
     }
-    BlendedDeformer deformer(examples);
+    BlendedDeformer deformer(examples, settings.blend);
     out.setup_seconds += deformer.setup_report().seconds.total;
     out.atoms = deformer.setup_report().atoms;
     out.clusters = deformer.setup_report().clusters;
@@ -382,9 +383,11 @@ int main(int argc, char** argv) {
       settings.registration = false;
     } else if (arg == "--verbose") {
       settings.verbose = true;
+    } else if (arg == "--choice-after-solve") {
+      settings.blend.example_choice_after_solve = true;
     } else {
       std::cerr << "usage: posekit_blend_evaluation [--data DIR] [--sets a,b,...] [--poses N] [--skip-registration] "
-                   "[--feature-rings N] [--verbose]\n";
+                   "[--feature-rings N] [--choice-after-solve] [--verbose]\n";
       return 2;
     }
   }

@@ -48,6 +48,9 @@ struct BlendOptions {
   /// Local/global iterations with the average ARAP energy, then with the minimal ARAP energy.
   int average_iterations = 4;
   int minimal_iterations = 4;
+  /// Minimal ARAP picks its example by the energy after that example's global step (one forward
+  /// substitution per example and iteration) instead of the energy at the current maps.
+  bool example_choice_after_solve = false;
   /// A stage stops early when an iteration lowers the energy by less than this fraction.
   double tolerance = 1e-5;
   /// Estimate the global scale s (closed form); false keeps s = 1.

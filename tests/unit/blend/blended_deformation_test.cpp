@@ -94,6 +94,23 @@ TEST_F(ArmDeformation, EnergyNeverRisesWithinAStage) {
   EXPECT_GE(result.closest_example, 0);
 }
 
+TEST_F(ArmDeformation, ChoosingTheExampleAfterItsSolveAlsoDescends) {
+  BlendOptions after = deformer->options();
+  after.example_choice_after_solve = true;
+  BlendedDeformer exact(*examples, after);
+  const std::vector<int> points = spread_vertices(targets->pose(1), 10);
+  exact.set_constraints(vertex_constraints(points));
+  const BlendResult result = exact.deform(rows_of(targets->pose(1), points));
+  for (size_t i = 1; i < result.iterations.size(); ++i) {
+    if (result.iterations[i].stage == "minimal" && result.iterations[i - 1].stage == "minimal") {
+      EXPECT_LE(result.iterations[i].energy, result.iterations[i - 1].energy * (1 + 1e-9) + 1e-12) << i;
+    }
+  }
+  EXPECT_LT(max_distortion(result.vertices, targets->pose(1), examples->faces()), 0.02);
+  // Bent at 67.5 degrees, between the examples at 45 and 90.
+  EXPECT_TRUE(result.closest_example == 1 || result.closest_example == 2) << result.closest_example;
+}
+
 TEST_F(ArmDeformation, RecoversTheScaleOfTheConstraints) {
   // The 90-degree example, 1.5 times larger and moved: the scale step finds 1.5.
   Eigen::MatrixX3d target = examples->pose(2) * 1.5;
