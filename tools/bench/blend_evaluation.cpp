@@ -10,7 +10,8 @@
 //     correspondence lies within 5 % of the square root of the area of their true position.
 //
 // posekit_blend_evaluation [--data DIR] [--sets a,b,...] [--poses N] [--skip-registration]
-//                          [--feature-rings N] [--choice-after-solve] [--verbose]
+//                          [--feature-rings N] [--choice-after-solve] [--average-iterations N]
+//                          [--minimal-iterations N] [--verbose]
 #include <posekit/blended_deformation.hpp>
 #include <posekit/geometry.hpp>
 #include <posekit/mesh_io.hpp>
@@ -249,6 +250,8 @@ struct SetResults {
   Cell scaled;          // the held-out pose's 20 constraints, 1.5 times larger; extra: the scale
   Cell scale_ratio;     // extra: that scale over the scale from the constraints at their own size
   Cell scaled_example;  // an example's own 20 constraints, 1.5 times larger; extra: the scale
+  Cell scaled_size;     // extra: sqrt(area of the result / area of the pose 1.5 times larger), held-out
+  Cell example_size;    // the same for the example
   Cell initial, completed;
   std::vector<double> correct_fraction, removed_fraction, registration_seconds;
   double setup_seconds = 0.0;
@@ -309,6 +312,11 @@ SetResults evaluate(const Settings& settings, const std::string& name) {
         const BlendResult from_example = deformer.deform(targets);
         out.scaled_example.add(distortion(from_example.vertices, bigger_example, faces), from_example.seconds,
                                from_example.scale);
+        const auto size_ratio = [&](const Eigen::MatrixX3d& result, const Eigen::MatrixX3d& truth_pose) {
+          return std::sqrt(face_areas(result, faces).sum() / face_areas(truth_pose, faces).sum());
+        };
+        out.scaled_size.add(Distortion{}, 0.0, size_ratio(scaled.vertices, bigger));
+        out.example_size.add(Distortion{}, 0.0, size_ratio(from_example.vertices, bigger_example));
       }
     }
     if (settings.registration) {
@@ -385,9 +393,13 @@ int main(int argc, char** argv) {
       settings.verbose = true;
     } else if (arg == "--choice-after-solve") {
       settings.blend.example_choice_after_solve = true;
+    } else if (arg == "--average-iterations") {
+      settings.blend.average_iterations = std::atoi(value().c_str());
+    } else if (arg == "--minimal-iterations") {
+      settings.blend.minimal_iterations = std::atoi(value().c_str());
     } else {
       std::cerr << "usage: posekit_blend_evaluation [--data DIR] [--sets a,b,...] [--poses N] [--skip-registration] "
-                   "[--feature-rings N] [--choice-after-solve] [--verbose]\n";
+                   "[--feature-rings N] [--choice-after-solve] [--average-iterations N] [--minimal-iterations N] [--verbose]\n";
       return 2;
     }
   }
@@ -421,18 +433,20 @@ int main(int argc, char** argv) {
   }
   std::printf("\nScale: 20 constraints scaled by 1.5, from the held-out pose (its scale against the examples is "
               "not exactly 1 at its own size, hence the ratio) and from an example (scale exactly 1.5); mean, min, max\n");
-  std::printf("| set | held-out x1.5: scale | max %% / mean %% | scale x1.5 / scale x1 | example x1.5: scale | max %% / "
-              "mean %% |\n|---|---|---|---|---|---|\n");
+  std::printf("| set | held-out x1.5: scale | max %% / mean %% | scale x1.5 / scale x1 | size of the result / size "
+              "of the pose | example x1.5: scale | max %% / mean %% | size of the result / size of the pose "
+              "|\n|---|---|---|---|---|---|---|---|\n");
   const auto triple = [](const std::vector<double>& v) {
     char text[64];
     std::snprintf(text, sizeof text, "%.4f, %.4f, %.4f", Cell::average(v), Cell::smallest(v), Cell::largest(v));
     return std::string(text);
   };
   for (const SetResults& r : results) {
-    std::printf("| %s | %s | %.2f / %.3f | %s | %s | %.2f / %.3f |\n", r.name.c_str(), triple(r.scaled.extra).c_str(),
-                100 * Cell::average(r.scaled.max), 100 * Cell::average(r.scaled.mean), triple(r.scale_ratio.extra).c_str(),
+    std::printf("| %s | %s | %.2f / %.3f | %s | %s | %s | %.2f / %.3f | %s |\n", r.name.c_str(),
+                triple(r.scaled.extra).c_str(), 100 * Cell::average(r.scaled.max), 100 * Cell::average(r.scaled.mean),
+                triple(r.scale_ratio.extra).c_str(), triple(r.scaled_size.extra).c_str(),
                 triple(r.scaled_example.extra).c_str(), 100 * Cell::average(r.scaled_example.max),
-                100 * Cell::average(r.scaled_example.mean));
+                100 * Cell::average(r.scaled_example.mean), triple(r.example_size.extra).c_str());
   }
   if (settings.registration) {
     std::printf("\nPartial registration: 8 feature points, surface removed as listed; correspondences within 5 %% of "

@@ -42,6 +42,8 @@ void add_blend_options(CLI::App* command, BlendCommandOptions& options) {
       ->check(CLI::Range(0, 10000))
       ->capture_default_str();
   command->add_flag("--no-scale", options.no_scale, "Keep the global scale at 1 instead of estimating it");
+  command->add_flag("--choice-after-solve", b.example_choice_after_solve,
+                    "Pick the minimal-ARAP example by its energy after its global step (slower)");
 }
 
 PoseSet read_examples(const BlendCommandOptions& options) {
