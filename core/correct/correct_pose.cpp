@@ -9,11 +9,13 @@
 
 #include "correct/intersection_fallback.hpp"
 #include "correct/target_reproduction.hpp"
+#include "correct/time_rollback.hpp"
 #include "correct/vertex_classification.hpp"
 #include "correct/vertex_trajectories.hpp"
 
 #include <algorithm>
 #include <chrono>
+#include <memory>
 #include <cmath>
 
 namespace posekit {
@@ -34,6 +36,8 @@ void check_options(const CorrectionOptions& options) {
     if (!condition) throw ArgumentError(message);
   };
   require(options.key_frames >= 2, "key_frames must be >= 2, got " + std::to_string(options.key_frames));
+  require(options.intersection_substeps >= 1,
+          "intersection_substeps must be >= 1, got " + std::to_string(options.intersection_substeps));
   require(options.constraint_times >= 2,
           "constraint_times must be >= 2, got " + std::to_string(options.constraint_times));
   require(options.exclusion_rings >= 0,
@@ -87,6 +91,21 @@ void check_pose(const Eigen::MatrixX3d& pose, const char* name) {
   }
 }
 
+// The poses tested for intersections: the key frames and, between each two, `substeps` - 1 poses
+// of the trajectories. Between key frames an intersection sweeps a band over the surface that
+// the frames alone miss, where a part passing through another would find the other's constraints
+// and be dragged along.
+std::vector<Eigen::MatrixX3d> tested_poses(const std::vector<Eigen::MatrixX3d>& frames,
+                                           const detail::VertexTrajectories& trajectories, int substeps) {
+  std::vector<Eigen::MatrixX3d> poses;
+  const int intervals = static_cast<int>(frames.size()) - 1;
+  for (int i = 0; i <= intervals * substeps; ++i) {
+    poses.push_back(i % substeps == 0 ? frames[static_cast<size_t>(i / substeps)]
+                                      : trajectories.pose(static_cast<double>(i) / (intervals * substeps)));
+  }
+  return poses;
+}
+
 // Which vertices constrain the field at each of the constraint times: all but the unconstrained
 // ones, or, with an exclusion window, all but those near an intersection of a key frame within
 // the window (in key-frame spacings) of that time.
@@ -101,7 +120,7 @@ std::vector<std::vector<char>> constrained_at_times(const detail::VertexClassifi
   for (size_t step = 0; step < time_count; ++step) {
     const double frame_time = static_cast<double>(step) / static_cast<double>(time_count - 1) * (frame_count - 1);
     for (int frame = 0; frame < frame_count; ++frame) {
-      if (std::abs(frame - frame_time) > window) continue;
+      if (std::abs(frame - frame_time) > window * options.intersection_substeps) continue;
       const std::vector<char>& excluded = classification.unconstrained_in_frame[static_cast<size_t>(frame)];
       for (size_t v = 0; v < vertex_count; ++v) {
         if (excluded[v]) constrained[step][v] = 0;
@@ -163,16 +182,18 @@ Eigen::MatrixX3d correct_pose(const Eigen::MatrixX3d& reference, const Eigen::Ma
 
   stage_start = Clock::now();
   stage("classification", 0.0);
-  const detail::VertexClassification classification =
-      detail::classify_vertices(frames, faces, options.exclusion_rings, options.excluded_vertices);
+  const detail::VertexTrajectories trajectories(frames);
+  const detail::VertexClassification classification = detail::classify_vertices(
+      tested_poses(frames, trajectories, options.intersection_substeps), faces, options.exclusion_rings,
+      options.excluded_vertices);
   report.excluded_vertices = classification.excluded;
   report.reference_intersecting_faces = static_cast<int>(classification.reference_intersecting.size());
   report.target_intersecting_faces = static_cast<int>(classification.target_intersecting.size());
   report.seconds.classification = seconds_since(stage_start);
   stage("classification", 1.0);
 
+  frames.clear();
   stage_start = Clock::now();
-  const detail::VertexTrajectories trajectories(std::move(frames));
   const detail::SpaceTimeConstraints constraints =
       detail::sample_constraints(trajectories, constrained_at_times(classification, options));
   report.constraints = static_cast<int>(constraints.positions.rows());
@@ -205,12 +226,13 @@ Eigen::MatrixX3d correct_pose(const Eigen::MatrixX3d& reference, const Eigen::Ma
   Rk45Options integration_options = options.integration;
   integration_options.t_begin = 0.0;
   integration_options.t_end = time_scale;
+  RbfField final_field = fit.field();
   const auto integrate = [&](const RbfField& field) {
     Eigen::MatrixX3d positions = reference_n;
     report.integration = summarize(device.integrate_rk45(*device.upload_field(field), positions, integration_options));
     return positions;
   };
-  Eigen::MatrixX3d result_n = integrate(fit.field());
+  Eigen::MatrixX3d result_n = integrate(final_field);
   report.seconds.integration = seconds_since(stage_start);
   stage("integration", 1.0);
 
@@ -225,7 +247,8 @@ Eigen::MatrixX3d correct_pose(const Eigen::MatrixX3d& reference, const Eigen::Ma
       const int k = endpoint_index[static_cast<size_t>(constraints.row_vertices[static_cast<size_t>(row)])];
       if (k >= 0) scaled_velocities.row(row) += drift.row(k) / time_scale;
     }
-    result_n = integrate(fit.refit(scaled_velocities));
+    final_field = fit.refit(scaled_velocities);
+    result_n = integrate(final_field);
     drift = endpoint_drift(result_n, target_n, constraints.vertices);
   }
   report.drift.after = DriftSummary::of(drift);
@@ -281,6 +304,37 @@ Eigen::MatrixX3d correct_pose(const Eigen::MatrixX3d& reference, const Eigen::Ma
                              std::to_string(fallback.rejected_regions) + " region(s) left as integrated";
     }
   }
+  report.seconds.verification = seconds_since(stage_start);
+
+  stage_start = Clock::now();
+  if (options.rollback) {
+    stage("rollback", 0.0);
+    std::unique_ptr<DeviceField> uploaded;
+    const detail::PathSampler paths = [&](const std::vector<int>& vertices, int segments) {
+      if (!uploaded) uploaded = device.upload_field(final_field);
+      Eigen::MatrixX3d positions(static_cast<Eigen::Index>(vertices.size()), 3);
+      for (size_t i = 0; i < vertices.size(); ++i) positions.row(static_cast<Eigen::Index>(i)) = reference_n.row(vertices[i]);
+      std::vector<Eigen::MatrixX3d> samples{positions};
+      Rk45Options segment = integration_options;
+      for (int k = 1; k <= segments; ++k) {
+        segment.t_begin = time_scale * (k - 1) / segments;
+        segment.t_end = time_scale * k / segments;
+        device.integrate_rk45(*uploaded, positions, segment);
+        samples.push_back(positions);
+      }
+      return samples;
+    };
+    const detail::RollbackResult rollback =
+        detail::roll_back_regions(result_n, paths, faces, classification.reference_intersecting);
+    report.rollback_new_faces_before = rollback.new_faces_before;
+    report.rollback_regions = rollback.regions;
+    report.rollback_vertices = rollback.vertices;
+    report.rollback_earliest_time = rollback.earliest_time;
+  }
+  report.seconds.rollback = seconds_since(stage_start);
+  if (options.rollback) stage("rollback", 1.0);
+
+  stage_start = Clock::now();
   Eigen::MatrixX3d result = normalization.undo(result_n);
   // Vertices that are the target's own get its coordinates exactly, not their normalization's round trip.
   for (Eigen::Index v = 0; v < result.rows(); ++v) {
@@ -301,7 +355,7 @@ Eigen::MatrixX3d correct_pose(const Eigen::MatrixX3d& reference, const Eigen::Ma
   }
   report.near_intersection_vertices = static_cast<int>(near_rows.size());
   report.median_distance_near_intersections = DriftSummary::of(difference(near_rows, Eigen::all)).median;
-  report.seconds.verification = seconds_since(stage_start);
+  report.seconds.verification += seconds_since(stage_start);
   stage("verification", 1.0);
 
   report.seconds.total = seconds_since(start);

@@ -31,6 +31,17 @@ void VertexTrajectories::locate(double t, int& segment, double& s) const {
   s = scaled - segment;
 }
 
+Eigen::MatrixX3d VertexTrajectories::pose(double t) const {
+  int segment = 0;
+  double s = 0.0;
+  locate(t, segment, s);
+  const auto k = static_cast<size_t>(segment);
+  const double s2 = s * s;
+  const double s3 = s2 * s;
+  return (2 * s3 - 3 * s2 + 1) * frames_[k] + ((s3 - 2 * s2 + s) * spacing_) * tangents_[k] +
+         (-2 * s3 + 3 * s2) * frames_[k + 1] + ((s3 - s2) * spacing_) * tangents_[k + 1];
+}
+
 Eigen::Vector3d VertexTrajectories::position(int vertex, double t) const {
   int segment = 0;
   double s = 0.0;

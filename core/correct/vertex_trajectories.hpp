@@ -19,6 +19,8 @@ class VertexTrajectories {
   int vertex_count() const { return static_cast<int>(frames_.front().rows()); }
   /// Position of `vertex` at time t in [0, 1].
   Eigen::Vector3d position(int vertex, double t) const;
+  /// Positions of every vertex at time t in [0, 1] (#V by 3).
+  Eigen::MatrixX3d pose(double t) const;
   /// Time derivative of the position of `vertex` at time t in [0, 1].
   Eigen::Vector3d velocity(int vertex, double t) const;
 

@@ -24,6 +24,7 @@ struct CorrectCommandOptions {
   std::string exclude;
   bool full_refactorization = false;
   bool no_fallback = false;
+  bool no_rollback = false;
   CorrectionOptions correction;
 };
 
@@ -100,6 +101,11 @@ nlohmann::json to_json(const CorrectionReport& report) {
       {"reproduction",
        {{"vertices", report.reproduced_vertices},
         {"skipped", report.reproduction_skipped}}},
+      {"rollback",
+       {{"new_faces_before", report.rollback_new_faces_before},
+        {"regions", report.rollback_regions},
+        {"vertices", report.rollback_vertices},
+        {"earliest_time", report.rollback_earliest_time}}},
       {"distance_to_target",
        {{"median", report.median_distance_to_target},
         {"max", report.max_distance_to_target},
@@ -120,6 +126,7 @@ nlohmann::json to_json(const CorrectionReport& report) {
         {"drift_compensation", report.seconds.drift_compensation},
         {"reproduction", report.seconds.reproduction},
         {"verification", report.seconds.verification},
+        {"rollback", report.seconds.rollback},
         {"total", report.seconds.total}}},
   };
 }
@@ -135,6 +142,7 @@ void run_correct(CorrectCommandOptions options) {
   }
   options.correction.blocked_update = !options.full_refactorization;
   options.correction.fallback = !options.no_fallback;
+  options.correction.rollback = !options.no_rollback;
   std::unique_ptr<Device> device = create_device(options.device);
 
   CorrectionReport report;
@@ -154,6 +162,12 @@ void run_correct(CorrectCommandOptions options) {
               << " centers\n";
   }
   if (!report.fallback_note.empty()) std::cerr << "posekit: note: " << report.fallback_note << "\n";
+  if (report.rollback_regions > 0) {
+    std::cerr << "posekit: note: " << report.rollback_regions << " region(s) (" << report.rollback_vertices
+              << " vertices) moved back along their path lines, to time " << report.rollback_earliest_time
+              << " at the earliest; " << report.rollback_new_faces_before << " new intersecting faces before, "
+              << report.new_intersecting_faces << " after\n";
+  }
 }
 
 }  // namespace
@@ -173,6 +187,10 @@ void add_correct_command(CLI::App& app, int& exit_status) {
                       "File of vertex indices to keep out of the constraints (white-space separated)");
   command->add_option("--key-frames", c.key_frames, "Key frames from reference to target, both included")
       ->check(CLI::Range(2, 1000))
+      ->capture_default_str();
+  command->add_option("--intersection-substeps", c.intersection_substeps,
+                      "Poses tested for self-intersections per key-frame interval (the key frame, then the trajectories)")
+      ->check(CLI::Range(1, 100))
       ->capture_default_str();
   command->add_option("--constraint-times", c.constraint_times, "Sample times per trajectory (s + 1)")
       ->check(CLI::Range(2, 1000))
@@ -222,6 +240,8 @@ void add_correct_command(CLI::App& app, int& exit_status) {
                     "Refactorize the whole RBF system every round instead of the blocked update");
   command->add_flag("--no-fallback", options->no_fallback,
                     "Keep the integrated result where it has intersections the reference has not");
+  command->add_flag("--no-rollback", options->no_rollback,
+                    "Do not move regions that still intersect back along their path lines");
   command->callback([options, &exit_status] { exit_status = run_guarded([&] { run_correct(*options); }); });
 }
 

@@ -41,7 +41,13 @@ struct CorrectionOptions {
   /// Refits with each constrained vertex's endpoint drift added to its velocities, then integrates
   /// again: same centers, two triangular solves and one integration per pass (>= 0).
   int drift_passes = 1;
+  /// Poses tested for self-intersections per key-frame interval (>= 1): the key frame and
+  /// substeps - 1 poses of the trajectories after it.
+  int intersection_substeps = 2;
   bool fallback = true;              ///< restore target regions the field cannot reach (see report)
+  /// Where new intersections remain after the fallback, move their regions back along their path
+  /// lines, relative to the surface around them, to the latest clean time (see report).
+  bool rollback = true;
   /// Which constraints an intersection removes. < 0: a vertex near an intersection in any key frame
   /// loses its whole trajectory, as the authors do. >= 0: only its constraints within this many
   /// key-frame spacings of a frame where it is near one; it keeps the rest of its path, which holds
@@ -60,7 +66,8 @@ struct CorrectionOptions {
 /// Wall time of each stage, in seconds.
 struct CorrectionTimes {
   double normalization = 0, key_frames = 0, classification = 0, constraints = 0, fitting = 0,
-         integration = 0, drift_compensation = 0, reproduction = 0, verification = 0, total = 0;
+         integration = 0, drift_compensation = 0, reproduction = 0, verification = 0, rollback = 0,
+         total = 0;
 };
 
 /// Median and largest distance between corresponding rows of two poses (in correction reports: the
@@ -101,6 +108,10 @@ struct CorrectionReport {
   int reproduced_vertices = 0;      ///< vertices given the target's position exactly (0 when skipped)
   bool reproduction_skipped = false;  ///< every margin tried would have added intersecting faces
   std::string fallback_note;        ///< what the fallback did, empty when it did nothing
+  int rollback_new_faces_before = 0;  ///< new intersecting faces when the rollback began (0: it did not run)
+  int rollback_regions = 0;         ///< regions moved back along their path lines
+  int rollback_vertices = 0;        ///< vertices so moved (blend included)
+  double rollback_earliest_time = 1;  ///< the earliest time a region was moved back to (1: none)
   double median_distance_to_target = 0;  ///< in the input's units
   double max_distance_to_target = 0;
   int near_intersection_vertices = 0;    ///< vertices near an intersection in some key frame
