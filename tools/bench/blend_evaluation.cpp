@@ -11,7 +11,7 @@
 //
 // posekit_blend_evaluation [--data DIR] [--sets a,b,...] [--poses N] [--skip-registration]
 //                          [--feature-rings N] [--choice-after-solve] [--average-iterations N]
-//                          [--minimal-iterations N] [--verbose]
+//                          [--minimal-iterations N] [--smoothness-weight S] [--verbose]
 #include <posekit/blended_deformation.hpp>
 #include <posekit/geometry.hpp>
 #include <posekit/mesh_io.hpp>
@@ -393,13 +393,15 @@ int main(int argc, char** argv) {
       settings.verbose = true;
     } else if (arg == "--choice-after-solve") {
       settings.blend.example_choice_after_solve = true;
+    } else if (arg == "--smoothness-weight") {
+      settings.blend.smoothness_weight = std::atof(value().c_str());
     } else if (arg == "--average-iterations") {
       settings.blend.average_iterations = std::atoi(value().c_str());
     } else if (arg == "--minimal-iterations") {
       settings.blend.minimal_iterations = std::atoi(value().c_str());
     } else {
       std::cerr << "usage: posekit_blend_evaluation [--data DIR] [--sets a,b,...] [--poses N] [--skip-registration] "
-                   "[--feature-rings N] [--choice-after-solve] [--average-iterations N] [--minimal-iterations N] [--verbose]\n";
+                   "[--feature-rings N] [--choice-after-solve] [--average-iterations N] [--minimal-iterations N] [--smoothness-weight S] [--verbose]\n";
       return 2;
     }
   }

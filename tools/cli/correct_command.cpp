@@ -5,6 +5,7 @@
 #include <posekit/correct.hpp>
 #include <posekit/device_registry.hpp>
 #include <posekit/error.hpp>
+#include <posekit/integer_list.hpp>
 #include <posekit/mesh_io.hpp>
 
 #include <fstream>
@@ -30,31 +31,7 @@ struct CorrectCommandOptions {
 
 // Vertex indices separated by white space; '#' starts a comment.
 std::vector<int> read_vertex_list(const std::string& file, int vertex_count) {
-  std::ifstream stream(file);
-  if (!stream) throw InputError(file, 0, "cannot open the exclusion file");
-  std::vector<int> vertices;
-  std::string line;
-  long line_number = 0;
-  while (std::getline(stream, line)) {
-    ++line_number;
-    line = line.substr(0, line.find('#'));
-    std::istringstream words(line);
-    std::string word;
-    while (words >> word) {
-      size_t used = 0;
-      long long index = -1;
-      try {
-        index = std::stoll(word, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used != word.size()) throw InputError(file, line_number, "'" + word + "' is not a vertex index");
-      if (index < 0 || index >= vertex_count) {
-        throw InputError(file, line_number, "vertex index " + word + " is outside [0, " + std::to_string(vertex_count) + ")");
-      }
-      vertices.push_back(static_cast<int>(index));
-    }
-  }
+  std::vector<int> vertices = read_integer_list(file, "vertex index", 0, vertex_count);
   if (vertices.empty()) throw InputError(file, 0, "the exclusion file lists no vertex");
   return vertices;
 }

@@ -150,8 +150,8 @@ TEST_F(PartLabelFile, WrongCountOrBadIdNamesTheFile) {
     }
   };
   expect_input_error(write("short.txt", "0 1 2\n"), "3 part ids");
-  expect_input_error(write("negative.txt", "0 -1\n"), "'-1' is not a part id");
-  expect_input_error(write("word.txt", "0\nleg\n"), ":2:");
+  expect_input_error(write("negative.txt", "0 -1\n"), ":1: part id -1 is outside [0, ");
+  expect_input_error(write("word.txt", "0\nleg\n"), ":2: 'leg' is not a part id");
   expect_input_error((folder_.path() / "missing.txt").string(), "cannot open");
 }
 
