@@ -206,9 +206,12 @@ TEST_F(CorrectCommand, CorrectsTheDemoArmAndWritesItsReport) {
   EXPECT_EQ(report.at("intersecting_faces").at("new_in_result"), 0);
   EXPECT_GT(report.at("fit").at("centers").get<int>(), 0);
   EXPECT_EQ(report.at("rk45").at("failures"), 0);
-  for (const char* stage : {"key_frames", "classification", "fitting", "integration", "verification", "total"}) {
+  for (const char* stage : {"key_frames", "classification", "fitting", "integration", "verification", "rollback", "total"}) {
     EXPECT_TRUE(report.at("seconds").contains(stage)) << stage;
   }
+  // Integration left nothing for the rollback to move on the demo arm.
+  EXPECT_EQ(report.at("rollback").at("regions"), 0);
+  EXPECT_EQ(report.at("rollback").at("new_faces_before"), 0);
   const CommandResult check = run_posekit({"check", output_, "--reference", rest_, "--json"});
   ASSERT_EQ(check.exit_status, 0) << check.err;
   EXPECT_EQ(nlohmann::json::parse(check.out).at("new_self_intersecting_faces"), 0);
@@ -239,6 +242,7 @@ TEST_F(CorrectCommand, RejectsAReferenceWithNan) {
 TEST_F(CorrectCommand, RejectsParametersOutOfRange) {
   expect_failure_without_output(run_posekit({"correct", rest_, bent_, "-o", output_, "--key-frames", "1"}), 2);
   expect_failure_without_output(run_posekit({"correct", rest_, bent_, "-o", output_, "--error-factor", "-1"}), 2);
+  expect_failure_without_output(run_posekit({"correct", rest_, bent_, "-o", output_, "--intersection-substeps", "0"}), 2);
   expect_failure_without_output(run_posekit({"correct", rest_, bent_, "-o", output_, "--device", "abacus"}), 1);
 }
 

@@ -108,6 +108,9 @@ TEST_F(CorrectPose, RejectsBadInput) {
   options.exclusion_rings = -1;
   EXPECT_THROW(correct_pose(arm_->pose(0), arm_->pose(1), arm_->faces(), *device_, options), ArgumentError);
   options = {};
+  options.intersection_substeps = 0;
+  EXPECT_THROW(correct_pose(arm_->pose(0), arm_->pose(1), arm_->faces(), *device_, options), ArgumentError);
+  options = {};
   options.excluded_vertices = {static_cast<int>(arm_->vertex_count())};
   EXPECT_THROW(correct_pose(arm_->pose(0), arm_->pose(1), arm_->faces(), *device_, options), ArgumentError);
   options = {};

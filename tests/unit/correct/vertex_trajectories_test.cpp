@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <posekit/error.hpp>
 
 #include "correct/vertex_trajectories.hpp"
@@ -53,6 +55,24 @@ TEST(VertexTrajectories, VelocityIsTheDerivativeOfPosition) {
     const double h = 1e-6;
     const double numeric = (trajectories.position(0, t + h).x() - trajectories.position(0, t - h).x()) / (2 * h);
     EXPECT_NEAR(trajectories.velocity(0, t).x(), numeric, 1e-7) << t;
+  }
+}
+
+TEST(VertexTrajectories, PoseHoldsEveryVertexAtOneTime) {
+  std::vector<Eigen::MatrixX3d> frames;
+  for (int i = 0; i < 4; ++i) {
+    const double t = i / 3.0;
+    Eigen::MatrixX3d frame(3, 3);
+    frame << t, t * t, 1.0, -t, 2.0, t * t * t, 0.5, std::sin(t), t;
+    frames.push_back(frame);
+  }
+  const VertexTrajectories trajectories(frames);
+  for (double t : {0.0, 0.2, 1.0 / 3.0, 0.5, 0.95, 1.0}) {
+    const Eigen::MatrixX3d pose = trajectories.pose(t);
+    ASSERT_EQ(pose.rows(), 3);
+    for (int v = 0; v < 3; ++v) {
+      EXPECT_LT((pose.row(v).transpose() - trajectories.position(v, t)).norm(), 1e-15) << v << " at " << t;
+    }
   }
 }
 
