@@ -8,6 +8,7 @@
 #include <posekit/topology.hpp>
 
 #include "correct/intersection_fallback.hpp"
+#include "correct/local_correction.hpp"
 #include "correct/target_reproduction.hpp"
 #include "correct/time_rollback.hpp"
 #include "correct/vertex_classification.hpp"
@@ -306,33 +307,51 @@ Eigen::MatrixX3d correct_pose(const Eigen::MatrixX3d& reference, const Eigen::Ma
   }
   report.seconds.verification = seconds_since(stage_start);
 
-  stage_start = Clock::now();
-  if (options.rollback) {
+  // Rollback first, as it changes least; what it cannot free is corrected again region by region,
+  // and what that leaves is rolled back once more.
+  std::unique_ptr<DeviceField> uploaded;
+  const detail::PathSampler paths = [&](const std::vector<int>& vertices, int segments) {
+    if (!uploaded) uploaded = device.upload_field(final_field);
+    Eigen::MatrixX3d positions(static_cast<Eigen::Index>(vertices.size()), 3);
+    for (size_t i = 0; i < vertices.size(); ++i) positions.row(static_cast<Eigen::Index>(i)) = reference_n.row(vertices[i]);
+    std::vector<Eigen::MatrixX3d> samples{positions};
+    Rk45Options segment = integration_options;
+    for (int k = 1; k <= segments; ++k) {
+      segment.t_begin = time_scale * (k - 1) / segments;
+      segment.t_end = time_scale * k / segments;
+      device.integrate_rk45(*uploaded, positions, segment);
+      samples.push_back(positions);
+    }
+    return samples;
+  };
+  bool rolled_back = false;
+  const auto roll_back = [&] {
+    stage_start = Clock::now();
     stage("rollback", 0.0);
-    std::unique_ptr<DeviceField> uploaded;
-    const detail::PathSampler paths = [&](const std::vector<int>& vertices, int segments) {
-      if (!uploaded) uploaded = device.upload_field(final_field);
-      Eigen::MatrixX3d positions(static_cast<Eigen::Index>(vertices.size()), 3);
-      for (size_t i = 0; i < vertices.size(); ++i) positions.row(static_cast<Eigen::Index>(i)) = reference_n.row(vertices[i]);
-      std::vector<Eigen::MatrixX3d> samples{positions};
-      Rk45Options segment = integration_options;
-      for (int k = 1; k <= segments; ++k) {
-        segment.t_begin = time_scale * (k - 1) / segments;
-        segment.t_end = time_scale * k / segments;
-        device.integrate_rk45(*uploaded, positions, segment);
-        samples.push_back(positions);
-      }
-      return samples;
-    };
     const detail::RollbackResult rollback =
         detail::roll_back_regions(result_n, paths, faces, classification.reference_intersecting);
-    report.rollback_new_faces_before = rollback.new_faces_before;
-    report.rollback_regions = rollback.regions;
-    report.rollback_vertices = rollback.vertices;
-    report.rollback_earliest_time = rollback.earliest_time;
+    if (!rolled_back) report.rollback_new_faces_before = rollback.new_faces_before;
+    rolled_back = true;
+    report.rollback_regions += rollback.regions;
+    report.rollback_vertices += rollback.vertices;
+    report.rollback_earliest_time = std::min(report.rollback_earliest_time, rollback.earliest_time);
+    report.seconds.rollback += seconds_since(stage_start);
+    stage("rollback", 1.0);
+  };
+  if (options.rollback) roll_back();
+
+  if (options.local_correction) {
+    stage_start = Clock::now();
+    stage("local correction", 0.0);
+    const detail::LocalCorrectionResult local = detail::correct_regions_locally(
+        result_n, reference_n, faces, classification.reference_intersecting, device, options);
+    report.local_new_faces_before = local.new_faces_before;
+    report.local_regions = local.regions;
+    report.local_vertices = local.vertices;
+    report.seconds.local_correction = seconds_since(stage_start);
+    stage("local correction", 1.0);
+    if (options.rollback && local.regions > 0) roll_back();
   }
-  report.seconds.rollback = seconds_since(stage_start);
-  if (options.rollback) stage("rollback", 1.0);
 
   stage_start = Clock::now();
   Eigen::MatrixX3d result = normalization.undo(result_n);

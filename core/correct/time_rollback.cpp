@@ -1,5 +1,7 @@
 #include "correct/time_rollback.hpp"
 
+#include "correct/vertex_regions.hpp"
+
 #include <posekit/rigid_motion.hpp>
 #include <posekit/self_intersections.hpp>
 #include <posekit/topology.hpp>
@@ -20,52 +22,6 @@ constexpr double kLargestRegionFraction = 0.1;
 
 // A fit of the region's earlier shape onto its surroundings needs points that span a plane.
 constexpr int kFewestAnchors = 3;
-
-// Edge distance of every vertex from the flagged ones, -1 beyond `limit`.
-std::vector<int> ring_distances(const std::vector<char>& flagged, const AdjacencyLists& neighbours, int limit) {
-  std::vector<int> distance(flagged.size(), -1);
-  std::vector<int> frontier;
-  for (int v = 0; v < static_cast<int>(flagged.size()); ++v) {
-    if (flagged[static_cast<size_t>(v)] != 0) {
-      distance[static_cast<size_t>(v)] = 0;
-      frontier.push_back(v);
-    }
-  }
-  for (int ring = 1; ring <= limit && !frontier.empty(); ++ring) {
-    std::vector<int> next;
-    for (int v : frontier) {
-      for (int w : neighbours[v]) {
-        if (distance[static_cast<size_t>(w)] >= 0) continue;
-        distance[static_cast<size_t>(w)] = ring;
-        next.push_back(w);
-      }
-    }
-    frontier = std::move(next);
-  }
-  return distance;
-}
-
-// Connected sets of flagged vertices, largest first.
-std::vector<std::vector<int>> connected_sets(const std::vector<char>& flagged, const AdjacencyLists& neighbours) {
-  std::vector<char> seen(flagged.size(), 0);
-  std::vector<std::vector<int>> sets;
-  for (int seed = 0; seed < static_cast<int>(flagged.size()); ++seed) {
-    if (flagged[static_cast<size_t>(seed)] == 0 || seen[static_cast<size_t>(seed)] != 0) continue;
-    std::vector<int> members{seed};
-    seen[static_cast<size_t>(seed)] = 1;
-    for (size_t next = 0; next < members.size(); ++next) {
-      for (int w : neighbours[members[next]]) {
-        if (flagged[static_cast<size_t>(w)] != 0 && seen[static_cast<size_t>(w)] == 0) {
-          seen[static_cast<size_t>(w)] = 1;
-          members.push_back(w);
-        }
-      }
-    }
-    sets.push_back(std::move(members));
-  }
-  std::stable_sort(sets.begin(), sets.end(), [](const auto& a, const auto& b) { return a.size() > b.size(); });
-  return sets;
-}
 
 bool touches(const std::vector<int>& face_list, const Eigen::MatrixX3i& faces, const std::vector<int>& distance,
              int within) {

@@ -206,10 +206,12 @@ TEST_F(CorrectCommand, CorrectsTheDemoArmAndWritesItsReport) {
   EXPECT_EQ(report.at("intersecting_faces").at("new_in_result"), 0);
   EXPECT_GT(report.at("fit").at("centers").get<int>(), 0);
   EXPECT_EQ(report.at("rk45").at("failures"), 0);
-  for (const char* stage : {"key_frames", "classification", "fitting", "integration", "verification", "rollback", "total"}) {
+  for (const char* stage : {"key_frames", "classification", "fitting", "integration", "verification", "local_correction",
+                            "rollback", "total"}) {
     EXPECT_TRUE(report.at("seconds").contains(stage)) << stage;
   }
-  // Integration left nothing for the rollback to move on the demo arm.
+  // Integration left nothing for the last stages to mend on the demo arm.
+  EXPECT_EQ(report.at("local_correction").at("regions"), 0);
   EXPECT_EQ(report.at("rollback").at("regions"), 0);
   EXPECT_EQ(report.at("rollback").at("new_faces_before"), 0);
   const CommandResult check = run_posekit({"check", output_, "--reference", rest_, "--json"});

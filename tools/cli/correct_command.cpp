@@ -26,6 +26,7 @@ struct CorrectCommandOptions {
   bool full_refactorization = false;
   bool no_fallback = false;
   bool no_rollback = false;
+  bool no_local_correction = false;
   CorrectionOptions correction;
 };
 
@@ -78,6 +79,10 @@ nlohmann::json to_json(const CorrectionReport& report) {
       {"reproduction",
        {{"vertices", report.reproduced_vertices},
         {"skipped", report.reproduction_skipped}}},
+      {"local_correction",
+       {{"new_faces_before", report.local_new_faces_before},
+        {"regions", report.local_regions},
+        {"vertices", report.local_vertices}}},
       {"rollback",
        {{"new_faces_before", report.rollback_new_faces_before},
         {"regions", report.rollback_regions},
@@ -103,6 +108,7 @@ nlohmann::json to_json(const CorrectionReport& report) {
         {"drift_compensation", report.seconds.drift_compensation},
         {"reproduction", report.seconds.reproduction},
         {"verification", report.seconds.verification},
+        {"local_correction", report.seconds.local_correction},
         {"rollback", report.seconds.rollback},
         {"total", report.seconds.total}}},
   };
@@ -120,6 +126,7 @@ void run_correct(CorrectCommandOptions options) {
   options.correction.blocked_update = !options.full_refactorization;
   options.correction.fallback = !options.no_fallback;
   options.correction.rollback = !options.no_rollback;
+  options.correction.local_correction = !options.no_local_correction;
   std::unique_ptr<Device> device = create_device(options.device);
 
   CorrectionReport report;
@@ -139,6 +146,11 @@ void run_correct(CorrectCommandOptions options) {
               << " centers\n";
   }
   if (!report.fallback_note.empty()) std::cerr << "posekit: note: " << report.fallback_note << "\n";
+  if (report.local_regions > 0) {
+    std::cerr << "posekit: note: " << report.local_regions << " region(s) (" << report.local_vertices
+              << " vertices) corrected again on their own; " << report.local_new_faces_before
+              << " new intersecting faces before\n";
+  }
   if (report.rollback_regions > 0) {
     std::cerr << "posekit: note: " << report.rollback_regions << " region(s) (" << report.rollback_vertices
               << " vertices) moved back along their path lines, to time " << report.rollback_earliest_time
@@ -217,6 +229,8 @@ void add_correct_command(CLI::App& app, int& exit_status) {
                     "Refactorize the whole RBF system every round instead of the blocked update");
   command->add_flag("--no-fallback", options->no_fallback,
                     "Keep the integrated result where it has intersections the reference has not");
+  command->add_flag("--no-local-correction", options->no_local_correction,
+                    "Do not correct regions that still intersect again on their own");
   command->add_flag("--no-rollback", options->no_rollback,
                     "Do not move regions that still intersect back along their path lines");
   command->callback([options, &exit_status] { exit_status = run_guarded([&] { run_correct(*options); }); });

@@ -45,6 +45,9 @@ struct CorrectionOptions {
   /// substeps - 1 poses of the trajectories after it.
   int intersection_substeps = 2;
   bool fallback = true;              ///< restore target regions the field cannot reach (see report)
+  /// Where new intersections remain after the fallback, correct the regions around them again, each
+  /// as a mesh of its own from the reference's region to the result's (see report).
+  bool local_correction = true;
   /// Where new intersections remain after the fallback, move their regions back along their path
   /// lines, relative to the surface around them, to the latest clean time (see report).
   bool rollback = true;
@@ -66,8 +69,8 @@ struct CorrectionOptions {
 /// Wall time of each stage, in seconds.
 struct CorrectionTimes {
   double normalization = 0, key_frames = 0, classification = 0, constraints = 0, fitting = 0,
-         integration = 0, drift_compensation = 0, reproduction = 0, verification = 0, rollback = 0,
-         total = 0;
+         integration = 0, drift_compensation = 0, reproduction = 0, verification = 0,
+         local_correction = 0, rollback = 0, total = 0;
 };
 
 /// Median and largest distance between corresponding rows of two poses (in correction reports: the
@@ -108,9 +111,12 @@ struct CorrectionReport {
   int reproduced_vertices = 0;      ///< vertices given the target's position exactly (0 when skipped)
   bool reproduction_skipped = false;  ///< every margin tried would have added intersecting faces
   std::string fallback_note;        ///< what the fallback did, empty when it did nothing
+  int local_new_faces_before = 0;   ///< new intersecting faces when the local correction began (0: it did not run)
+  int local_regions = 0;            ///< regions corrected anew on their own
+  int local_vertices = 0;           ///< vertices so changed
   int rollback_new_faces_before = 0;  ///< new intersecting faces when the rollback began (0: it did not run)
   int rollback_regions = 0;         ///< regions moved back along their path lines
-  int rollback_vertices = 0;        ///< vertices so moved (blend included)
+  int rollback_vertices = 0;        ///< vertices so moved (blend included; summed over the two rounds)
   double rollback_earliest_time = 1;  ///< the earliest time a region was moved back to (1: none)
   double median_distance_to_target = 0;  ///< in the input's units
   double max_distance_to_target = 0;

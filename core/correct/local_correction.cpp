@@ -1,0 +1,179 @@
+#include "correct/local_correction.hpp"
+
+#include "correct/vertex_regions.hpp"
+
+#include <posekit/error.hpp>
+#include <posekit/self_intersections.hpp>
+#include <posekit/topology.hpp>
+
+#include <algorithm>
+#include <utility>
+
+namespace posekit::detail {
+namespace {
+
+// Margins of the two passes: the region must hold the whole entangled part, its surroundings
+// and room to blend.
+constexpr int kMarginRings[] = {4, 8, 16};
+
+// Rounds of the passes at most.
+constexpr int kRounds = 3;
+
+// Beyond this fraction of the vertices a region is the pose again, with the pose's problems (and
+// its cost); up to it, a region on its own still misses the parts the whole pose's key frames pass
+// it through (lion-07: 806 new faces left with a fifth, 271 with half).
+constexpr double kLargestRegionFraction = 0.5;
+
+// A region of fewer faces gives the field too little to fit.
+constexpr int kFewestFaces = 16;
+
+struct Submesh {
+  std::vector<int> vertices;  // mesh vertex of each submesh vertex
+  Eigen::MatrixX3i faces;     // in submesh indices
+};
+
+// The faces whose three corners are all flagged, with their vertices renumbered.
+Submesh submesh_of(const std::vector<char>& flagged, const Eigen::MatrixX3i& faces) {
+  Submesh sub;
+  std::vector<int> index_of(flagged.size(), -1);
+  std::vector<Eigen::RowVector3i> kept;
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    bool inside = true;
+    for (int c = 0; c < 3; ++c) inside = inside && flagged[static_cast<size_t>(faces(f, c))] != 0;
+    if (!inside) continue;
+    Eigen::RowVector3i face;
+    for (int c = 0; c < 3; ++c) {
+      int& index = index_of[static_cast<size_t>(faces(f, c))];
+      if (index < 0) {
+        index = static_cast<int>(sub.vertices.size());
+        sub.vertices.push_back(faces(f, c));
+      }
+      face(c) = index;
+    }
+    kept.push_back(face);
+  }
+  sub.faces.resize(static_cast<Eigen::Index>(kept.size()), 3);
+  for (size_t f = 0; f < kept.size(); ++f) sub.faces.row(static_cast<Eigen::Index>(f)) = kept[f];
+  return sub;
+}
+
+// The connected sets joined wherever a face of one intersects a face of another: both sides of an
+// intersection belong to one problem (a tail and the leg it went through). Largest first.
+std::vector<std::vector<int>> linked_regions(const std::vector<std::vector<int>>& sets, const Eigen::MatrixX3d& pose,
+                                             const Eigen::MatrixX3i& faces) {
+  std::vector<int> set_of(static_cast<size_t>(pose.rows()), -1);
+  for (size_t k = 0; k < sets.size(); ++k) {
+    for (int v : sets[k]) set_of[static_cast<size_t>(v)] = static_cast<int>(k);
+  }
+  std::vector<int> parent(sets.size());
+  for (size_t k = 0; k < parent.size(); ++k) parent[k] = static_cast<int>(k);
+  const auto root = [&](int k) {
+    while (parent[static_cast<size_t>(k)] != k) k = parent[static_cast<size_t>(k)] = parent[static_cast<size_t>(parent[static_cast<size_t>(k)])];
+    return k;
+  };
+  for (const auto& [f, g] : self_intersecting_face_pairs(pose, faces)) {
+    const int a = set_of[static_cast<size_t>(faces(f, 0))];
+    const int b = set_of[static_cast<size_t>(faces(g, 0))];
+    if (a >= 0 && b >= 0) parent[static_cast<size_t>(root(a))] = root(b);
+  }
+  std::vector<std::vector<int>> regions(sets.size());
+  for (size_t k = 0; k < sets.size(); ++k) {
+    std::vector<int>& region = regions[static_cast<size_t>(root(static_cast<int>(k)))];
+    region.insert(region.end(), sets[k].begin(), sets[k].end());
+  }
+  regions.erase(std::remove_if(regions.begin(), regions.end(), [](const auto& r) { return r.empty(); }), regions.end());
+  std::stable_sort(regions.begin(), regions.end(), [](const auto& a, const auto& b) { return a.size() > b.size(); });
+  return regions;
+}
+
+Eigen::MatrixX3d rows_of(const Eigen::MatrixX3d& pose, const std::vector<int>& vertices) {
+  Eigen::MatrixX3d rows(static_cast<Eigen::Index>(vertices.size()), 3);
+  for (size_t i = 0; i < vertices.size(); ++i) rows.row(static_cast<Eigen::Index>(i)) = pose.row(vertices[i]);
+  return rows;
+}
+
+}  // namespace
+
+LocalCorrectionResult correct_regions_locally(Eigen::MatrixX3d& result, const Eigen::MatrixX3d& reference,
+                                              const Eigen::MatrixX3i& faces,
+                                              const std::vector<int>& reference_intersecting, Device& device,
+                                              const CorrectionOptions& options) {
+  const int vertex_count = static_cast<int>(result.rows());
+  const auto new_faces = [&](const Eigen::MatrixX3d& pose) {
+    return new_intersecting_faces(self_intersecting_faces(pose, faces), reference_intersecting);
+  };
+  LocalCorrectionResult out;
+  std::vector<int> current = new_faces(result);
+  out.new_faces_before = static_cast<int>(current.size());
+  const AdjacencyLists neighbours = vertex_neighbours(faces, vertex_count);
+  std::vector<char> changed(static_cast<size_t>(vertex_count), 0);
+
+  CorrectionOptions local = options;
+  local.local_correction = false;
+  local.excluded_vertices.clear();
+
+  // A correction can uncover or shift a residue, so the passes repeat while they help.
+  for (int round = 0; round < kRounds; ++round) {
+  const int regions_before = out.regions;
+  for (const int margin : kMarginRings) {
+    if (current.empty()) break;
+    std::vector<char> seeds(static_cast<size_t>(vertex_count), 0);
+    for (int f : current) {
+      for (int c = 0; c < 3; ++c) seeds[static_cast<size_t>(faces(f, c))] = 1;
+    }
+    const std::vector<int> grown = ring_distances(seeds, neighbours, margin);
+    std::vector<char> near(static_cast<size_t>(vertex_count), 0);
+    for (int v = 0; v < vertex_count; ++v) near[static_cast<size_t>(v)] = grown[static_cast<size_t>(v)] >= 0;
+
+    for (const std::vector<int>& region : linked_regions(connected_sets(near, neighbours), result, faces)) {
+      if (current.empty()) break;
+      if (static_cast<double>(region.size()) > kLargestRegionFraction * vertex_count) continue;
+      std::vector<char> inside(static_cast<size_t>(vertex_count), 0);
+      for (int v : region) inside[static_cast<size_t>(v)] = 1;
+      bool touched = false;
+      for (int f : current) {
+        for (int c = 0; c < 3; ++c) touched = touched || inside[static_cast<size_t>(faces(f, c))] != 0;
+      }
+      if (!touched) continue;  // an earlier region's correction freed this one
+      const Submesh sub = submesh_of(inside, faces);
+      if (sub.faces.rows() < kFewestFaces) continue;
+
+      Eigen::MatrixX3d corrected;
+      try {
+        corrected = correct_pose(rows_of(reference, sub.vertices), rows_of(result, sub.vertices), sub.faces, device,
+                                 local);
+      } catch (const DeviceError&) {
+        throw;
+      } catch (const Error&) {
+        continue;  // a region the pipeline cannot take on its own (a degenerate field, say)
+      }
+      // Blended in from the region's rim, which keeps its place, so the seam stays closed.
+      std::vector<char> outside(static_cast<size_t>(vertex_count), 0);
+      for (int v = 0; v < vertex_count; ++v) outside[static_cast<size_t>(v)] = inside[static_cast<size_t>(v)] == 0;
+      const std::vector<int> depth = ring_distances(outside, neighbours, options.blend_rings + 1);
+      Eigen::MatrixX3d candidate = result;
+      std::vector<int> moved;
+      for (size_t i = 0; i < sub.vertices.size(); ++i) {
+        const int v = sub.vertices[i];
+        const int d = depth[static_cast<size_t>(v)];
+        const double weight =
+            d < 0 ? 1.0 : std::min(1.0, static_cast<double>(d - 1) / static_cast<double>(options.blend_rings + 1));
+        if (weight <= 0.0) continue;
+        candidate.row(v) += weight * (corrected.row(static_cast<Eigen::Index>(i)) - result.row(v));
+        moved.push_back(v);
+      }
+      std::vector<int> remaining = new_faces(candidate);
+      if (remaining.size() >= current.size()) continue;
+      result = std::move(candidate);
+      current = std::move(remaining);
+      ++out.regions;
+      for (int v : moved) changed[static_cast<size_t>(v)] = 1;
+    }
+  }
+  if (out.regions == regions_before || current.empty()) break;
+  }
+  out.vertices = static_cast<int>(std::count(changed.begin(), changed.end(), 1));
+  return out;
+}
+
+}  // namespace posekit::detail
