@@ -307,8 +307,6 @@ Eigen::MatrixX3d correct_pose(const Eigen::MatrixX3d& reference, const Eigen::Ma
   }
   report.seconds.verification = seconds_since(stage_start);
 
-  // Rollback first, as it changes least; what it cannot free is corrected again region by region,
-  // and what that leaves is rolled back once more.
   std::unique_ptr<DeviceField> uploaded;
   const detail::PathSampler paths = [&](const std::vector<int>& vertices, int segments) {
     if (!uploaded) uploaded = device.upload_field(final_field);
@@ -324,34 +322,65 @@ Eigen::MatrixX3d correct_pose(const Eigen::MatrixX3d& reference, const Eigen::Ma
     }
     return samples;
   };
-  bool rolled_back = false;
-  const auto roll_back = [&] {
-    stage_start = Clock::now();
+  // What the last two stages did to one candidate pose.
+  struct Mending {
+    Eigen::MatrixX3d pose;
+    bool rolled_back = false;
+    int rollback_new_faces_before = 0, rollback_regions = 0, rollback_vertices = 0;
+    double rollback_earliest_time = 1.0;
+    detail::LocalCorrectionResult local;
+    int new_faces = 0;
+  };
+  const auto roll_back = [&](Mending& m) {
+    const Clock::time_point begin = Clock::now();
     stage("rollback", 0.0);
     const detail::RollbackResult rollback =
-        detail::roll_back_regions(result_n, paths, faces, classification.reference_intersecting);
-    if (!rolled_back) report.rollback_new_faces_before = rollback.new_faces_before;
-    rolled_back = true;
-    report.rollback_regions += rollback.regions;
-    report.rollback_vertices += rollback.vertices;
-    report.rollback_earliest_time = std::min(report.rollback_earliest_time, rollback.earliest_time);
-    report.seconds.rollback += seconds_since(stage_start);
+        detail::roll_back_regions(m.pose, paths, faces, classification.reference_intersecting);
+    if (!m.rolled_back) m.rollback_new_faces_before = rollback.new_faces_before;
+    m.rolled_back = true;
+    m.rollback_regions += rollback.regions;
+    m.rollback_vertices += rollback.vertices;
+    m.rollback_earliest_time = std::min(m.rollback_earliest_time, rollback.earliest_time);
+    m.new_faces = rollback.new_faces_after;
+    report.seconds.rollback += seconds_since(begin);
     stage("rollback", 1.0);
   };
-  if (options.rollback) roll_back();
-
-  if (options.local_correction) {
-    stage_start = Clock::now();
+  const auto correct_locally = [&](Mending& m) {
+    const Clock::time_point begin = Clock::now();
     stage("local correction", 0.0);
-    const detail::LocalCorrectionResult local = detail::correct_regions_locally(
-        result_n, reference_n, faces, classification.reference_intersecting, device, options);
-    report.local_new_faces_before = local.new_faces_before;
-    report.local_regions = local.regions;
-    report.local_vertices = local.vertices;
-    report.seconds.local_correction = seconds_since(stage_start);
+    m.local = detail::correct_regions_locally(m.pose, reference_n, faces, classification.reference_intersecting,
+                                              device, options);
+    m.new_faces = static_cast<int>(
+        new_intersecting_faces(self_intersecting_faces(m.pose, faces), classification.reference_intersecting).size());
+    report.seconds.local_correction += seconds_since(begin);
     stage("local correction", 1.0);
-    if (options.rollback && local.regions > 0) roll_back();
+  };
+  // Rollback first, as it changes least; what it cannot free is corrected again region by region,
+  // and what that leaves is rolled back once more. Either stage can spoil the other's chances (a
+  // rollback can leave a region no local correction frees, and the other way round), so where
+  // faces remain the other order is tried too, from the same pose, and the better result kept.
+  Mending mended;
+  mended.pose = result_n;
+  if (options.rollback) roll_back(mended);
+  if (options.local_correction && (!mended.rolled_back || mended.new_faces > 0)) {
+    correct_locally(mended);
+    if (options.rollback && mended.local.regions > 0) roll_back(mended);
   }
+  if (options.rollback && options.local_correction && mended.new_faces > 0) {
+    Mending other;
+    other.pose = result_n;
+    correct_locally(other);
+    if (other.new_faces > 0) roll_back(other);
+    if (other.new_faces < mended.new_faces) mended = std::move(other);
+  }
+  result_n = std::move(mended.pose);
+  report.rollback_new_faces_before = mended.rollback_new_faces_before;
+  report.rollback_regions = mended.rollback_regions;
+  report.rollback_vertices = mended.rollback_vertices;
+  report.rollback_earliest_time = mended.rollback_earliest_time;
+  report.local_new_faces_before = mended.local.new_faces_before;
+  report.local_regions = mended.local.regions;
+  report.local_vertices = mended.local.vertices;
 
   stage_start = Clock::now();
   Eigen::MatrixX3d result = normalization.undo(result_n);
