@@ -4,6 +4,7 @@
 
 #include <posekit/error.hpp>
 #include <posekit/self_intersections.hpp>
+#include <posekit/submesh.hpp>
 #include <posekit/topology.hpp>
 
 #include <algorithm>
@@ -26,36 +27,6 @@ constexpr double kLargestRegionFraction = 0.5;
 
 // A region of fewer faces gives the field too little to fit.
 constexpr int kFewestFaces = 16;
-
-struct Submesh {
-  std::vector<int> vertices;  // mesh vertex of each submesh vertex
-  Eigen::MatrixX3i faces;     // in submesh indices
-};
-
-// The faces whose three corners are all flagged, with their vertices renumbered.
-Submesh submesh_of(const std::vector<char>& flagged, const Eigen::MatrixX3i& faces) {
-  Submesh sub;
-  std::vector<int> index_of(flagged.size(), -1);
-  std::vector<Eigen::RowVector3i> kept;
-  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
-    bool inside = true;
-    for (int c = 0; c < 3; ++c) inside = inside && flagged[static_cast<size_t>(faces(f, c))] != 0;
-    if (!inside) continue;
-    Eigen::RowVector3i face;
-    for (int c = 0; c < 3; ++c) {
-      int& index = index_of[static_cast<size_t>(faces(f, c))];
-      if (index < 0) {
-        index = static_cast<int>(sub.vertices.size());
-        sub.vertices.push_back(faces(f, c));
-      }
-      face(c) = index;
-    }
-    kept.push_back(face);
-  }
-  sub.faces.resize(static_cast<Eigen::Index>(kept.size()), 3);
-  for (size_t f = 0; f < kept.size(); ++f) sub.faces.row(static_cast<Eigen::Index>(f)) = kept[f];
-  return sub;
-}
 
 // The connected sets joined wherever a face of one intersects a face of another: both sides of an
 // intersection belong to one problem (a tail and the leg it went through). Largest first.
@@ -135,13 +106,19 @@ LocalCorrectionResult correct_regions_locally(Eigen::MatrixX3d& result, const Ei
         for (int c = 0; c < 3; ++c) touched = touched || inside[static_cast<size_t>(faces(f, c))] != 0;
       }
       if (!touched) continue;  // an earlier region's correction freed this one
-      const Submesh sub = submesh_of(inside, faces);
+      std::vector<char> keep(static_cast<size_t>(faces.rows()), 0);
+      for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+        keep[static_cast<size_t>(f)] = inside[static_cast<size_t>(faces(f, 0))] != 0 &&
+                                       inside[static_cast<size_t>(faces(f, 1))] != 0 &&
+                                       inside[static_cast<size_t>(faces(f, 2))] != 0;
+      }
+      std::vector<int> sub_vertices;
+      const Mesh sub = submesh(reference, faces, keep, &sub_vertices);
       if (sub.faces.rows() < kFewestFaces) continue;
 
       Eigen::MatrixX3d corrected;
       try {
-        corrected = correct_pose(rows_of(reference, sub.vertices), rows_of(result, sub.vertices), sub.faces, device,
-                                 local);
+        corrected = correct_pose(sub.vertices, rows_of(result, sub_vertices), sub.faces, device, local);
       } catch (const DeviceError&) {
         throw;
       } catch (const Error&) {
@@ -153,8 +130,8 @@ LocalCorrectionResult correct_regions_locally(Eigen::MatrixX3d& result, const Ei
       const std::vector<int> depth = ring_distances(outside, neighbours, options.blend_rings + 1);
       Eigen::MatrixX3d candidate = result;
       std::vector<int> moved;
-      for (size_t i = 0; i < sub.vertices.size(); ++i) {
-        const int v = sub.vertices[i];
+      for (size_t i = 0; i < sub_vertices.size(); ++i) {
+        const int v = sub_vertices[i];
         const int d = depth[static_cast<size_t>(v)];
         const double weight =
             d < 0 ? 1.0 : std::min(1.0, static_cast<double>(d - 1) / static_cast<double>(options.blend_rings + 1));

@@ -5,6 +5,7 @@
 #include <posekit/demo_shape.hpp>
 #include <posekit/geometry.hpp>
 #include <posekit/mesh_io.hpp>
+#include <posekit/submesh.hpp>
 
 #include <algorithm>
 #include <fstream>
@@ -207,27 +208,12 @@ struct ScanFiles : BlendFiles {
   void SetUp() override {
     BlendFiles::SetUp();
     const Mesh rest = read_mesh(examples.front());
-    std::vector<int> index(static_cast<size_t>(bent60.rows()), -1);
-    std::vector<Eigen::RowVector3i> kept;
+    std::vector<char> kept(static_cast<size_t>(faces.rows()), 0);
     for (Eigen::Index f = 0; f < faces.rows(); ++f) {
       const double x = (rest.vertices(faces(f, 0), 0) + rest.vertices(faces(f, 1), 0) + rest.vertices(faces(f, 2), 0)) / 3;
-      if (x > 3.2) continue;
-      Eigen::RowVector3i face;
-      for (int c = 0; c < 3; ++c) {
-        int& i = index[static_cast<size_t>(faces(f, c))];
-        if (i < 0) {
-          i = static_cast<int>(original.size());
-          original.push_back(faces(f, c));
-        }
-        face(c) = i;
-      }
-      kept.push_back(face);
+      kept[static_cast<size_t>(f)] = x <= 3.2;
     }
-    Mesh scan_mesh;
-    scan_mesh.vertices.resize(static_cast<Eigen::Index>(original.size()), 3);
-    for (size_t i = 0; i < original.size(); ++i) scan_mesh.vertices.row(static_cast<Eigen::Index>(i)) = bent60.row(original[i]);
-    scan_mesh.faces.resize(static_cast<Eigen::Index>(kept.size()), 3);
-    for (size_t f = 0; f < kept.size(); ++f) scan_mesh.faces.row(static_cast<Eigen::Index>(f)) = kept[f];
+    const Mesh scan_mesh = submesh(bent60, faces, kept, &original);
     scan = (folder.path() / "scan.off").string();
     write_mesh(scan, scan_mesh);
     features = write("features.txt", constraint_text(bent60, {0, 60, 120, 180, 240, 300}));

@@ -4,6 +4,7 @@
 // 4 and 9 examples when ../shared/data is present, and on the generated demo arm.
 #include <posekit/blended_deformation.hpp>
 #include <posekit/demo_shape.hpp>
+#include <posekit/geometry.hpp>
 #include <posekit/mesh_io.hpp>
 
 #include <benchmark/benchmark.h>
@@ -28,23 +29,9 @@ struct Case {
 // The machine may be shared: the minimum over repetitions is the number to quote.
 double minimum(const std::vector<double>& values) { return *std::min_element(values.begin(), values.end()); }
 
-std::vector<int> spread_vertices(const Eigen::MatrixX3d& vertices, int count) {
-  std::vector<int> chosen;
-  Eigen::Index first = 0;
-  (vertices.rowwise() - vertices.colwise().mean()).rowwise().squaredNorm().maxCoeff(&first);
-  chosen.push_back(static_cast<int>(first));
-  Eigen::VectorXd nearest = (vertices.rowwise() - vertices.row(first)).rowwise().squaredNorm();
-  while (static_cast<int>(chosen.size()) < count) {
-    Eigen::Index next = 0;
-    nearest.maxCoeff(&next);
-    chosen.push_back(static_cast<int>(next));
-    nearest = nearest.cwiseMin((vertices.rowwise() - vertices.row(next)).rowwise().squaredNorm());
-  }
-  return chosen;
-}
 
 void constrain(Case& c, int count) {
-  const std::vector<int> points = spread_vertices(c.target, count);
+  const std::vector<int> points = farthest_point_samples(c.target, count);
   c.constraints.clear();
   c.targets.resize(count, 3);
   for (int r = 0; r < count; ++r) {

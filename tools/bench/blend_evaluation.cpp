@@ -16,6 +16,7 @@
 #include <posekit/geometry.hpp>
 #include <posekit/mesh_io.hpp>
 #include <posekit/partial_registration.hpp>
+#include <posekit/submesh.hpp>
 #include <posekit/topology.hpp>
 
 #include <Eigen/LU>
@@ -33,6 +34,7 @@
 #include <queue>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace posekit {
@@ -49,20 +51,7 @@ struct Settings {
 };
 
 std::vector<int> spread_vertices(const Eigen::MatrixX3d& vertices, int count, std::vector<int> chosen = {}) {
-  Eigen::VectorXd nearest = Eigen::VectorXd::Constant(vertices.rows(), std::numeric_limits<double>::infinity());
-  if (chosen.empty()) {
-    Eigen::Index first = 0;
-    (vertices.rowwise() - vertices.colwise().mean()).rowwise().squaredNorm().maxCoeff(&first);
-    chosen.push_back(static_cast<int>(first));
-  }
-  for (int v : chosen) nearest = nearest.cwiseMin((vertices.rowwise() - vertices.row(v)).rowwise().squaredNorm());
-  while (static_cast<int>(chosen.size()) < count) {
-    Eigen::Index next = 0;
-    nearest.maxCoeff(&next);
-    chosen.push_back(static_cast<int>(next));
-    nearest = nearest.cwiseMin((vertices.rowwise() - vertices.row(next)).rowwise().squaredNorm());
-  }
-  return chosen;
+  return farthest_point_samples(vertices, count, std::move(chosen));
 }
 
 struct Distortion {
@@ -217,28 +206,9 @@ std::vector<char> removed_faces(const Eigen::MatrixX3d& pose, const Eigen::Matri
 
 Mesh kept_part(const Eigen::MatrixX3d& pose, const Eigen::MatrixX3i& faces, const std::vector<char>& removed,
                std::vector<int>& original) {
-  std::vector<int> index(static_cast<size_t>(pose.rows()), -1);
-  std::vector<Eigen::RowVector3i> kept;
-  original.clear();
-  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
-    if (removed[static_cast<size_t>(f)]) continue;
-    Eigen::RowVector3i face;
-    for (int c = 0; c < 3; ++c) {
-      int& i = index[static_cast<size_t>(faces(f, c))];
-      if (i < 0) {
-        i = static_cast<int>(original.size());
-        original.push_back(faces(f, c));
-      }
-      face(c) = i;
-    }
-    kept.push_back(face);
-  }
-  Mesh scan;
-  scan.vertices.resize(static_cast<Eigen::Index>(original.size()), 3);
-  for (size_t i = 0; i < original.size(); ++i) scan.vertices.row(static_cast<Eigen::Index>(i)) = pose.row(original[i]);
-  scan.faces.resize(static_cast<Eigen::Index>(kept.size()), 3);
-  for (size_t f = 0; f < kept.size(); ++f) scan.faces.row(static_cast<Eigen::Index>(f)) = kept[f];
-  return scan;
+  std::vector<char> kept(removed.size());
+  for (size_t f = 0; f < removed.size(); ++f) kept[f] = removed[f] == 0;
+  return submesh(pose, faces, kept, &original);
 }
 
 struct SetResults {

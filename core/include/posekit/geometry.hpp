@@ -64,4 +64,9 @@ UnitSphereNormalization shared_unit_sphere_normalization(
 /// shared_unit_sphere_normalization over every pose of `poses`.
 UnitSphereNormalization shared_unit_sphere_normalization(const PoseSet& poses);
 
+/// Farthest-point sampling: `seeds`, then vertices each farthest from all chosen so far, up to
+/// `count` in all; with no seed the first is the vertex farthest from the centroid. Indices into
+/// `vertices` (#V by 3); fewer than `count` only when the mesh has fewer vertices.
+std::vector<int> farthest_point_samples(const Eigen::MatrixX3d& vertices, int count, std::vector<int> seeds = {});
+
 }  // namespace posekit

@@ -5,6 +5,7 @@
 #include <posekit/demo_shape.hpp>
 #include <posekit/geometry.hpp>
 #include <posekit/mesh.hpp>
+#include <posekit/submesh.hpp>
 
 #include <Eigen/Core>
 
@@ -79,46 +80,16 @@ inline PoseSet small_arm(const std::vector<double>& angles) {
 
 /// `count` vertices spread by farthest-point sampling from the vertex farthest from the centroid.
 inline std::vector<int> spread_vertices(const Eigen::MatrixX3d& vertices, int count) {
-  std::vector<int> chosen;
-  Eigen::Index first = 0;
-  (vertices.rowwise() - vertices.colwise().mean()).rowwise().squaredNorm().maxCoeff(&first);
-  chosen.push_back(static_cast<int>(first));
-  Eigen::VectorXd nearest = (vertices.rowwise() - vertices.row(first)).rowwise().squaredNorm();
-  while (static_cast<int>(chosen.size()) < count) {
-    Eigen::Index next = 0;
-    nearest.maxCoeff(&next);
-    chosen.push_back(static_cast<int>(next));
-    nearest = nearest.cwiseMin((vertices.rowwise() - vertices.row(next)).rowwise().squaredNorm());
-  }
-  return chosen;
+  return farthest_point_samples(vertices, count);
 }
 
 /// A partial scan of `pose`: the faces for which keep(face) holds, their vertices renumbered in
 /// order; `original` receives the pose vertex of every scan vertex.
 template <typename Keep>
 Mesh partial_scan(const Eigen::MatrixX3d& pose, const Eigen::MatrixX3i& faces, Keep keep, std::vector<int>& original) {
-  std::vector<int> index(static_cast<size_t>(pose.rows()), -1);
-  std::vector<Eigen::RowVector3i> kept;
-  original.clear();
-  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
-    if (!keep(static_cast<int>(f))) continue;
-    Eigen::RowVector3i face;
-    for (int c = 0; c < 3; ++c) {
-      int& i = index[static_cast<size_t>(faces(f, c))];
-      if (i < 0) {
-        i = static_cast<int>(original.size());
-        original.push_back(faces(f, c));
-      }
-      face(c) = i;
-    }
-    kept.push_back(face);
-  }
-  Mesh scan;
-  scan.vertices.resize(static_cast<Eigen::Index>(original.size()), 3);
-  for (size_t i = 0; i < original.size(); ++i) scan.vertices.row(static_cast<Eigen::Index>(i)) = pose.row(original[i]);
-  scan.faces.resize(static_cast<Eigen::Index>(kept.size()), 3);
-  for (size_t f = 0; f < kept.size(); ++f) scan.faces.row(static_cast<Eigen::Index>(f)) = kept[f];
-  return scan;
+  std::vector<char> kept(static_cast<size_t>(faces.rows()), 0);
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) kept[static_cast<size_t>(f)] = keep(static_cast<int>(f)) ? 1 : 0;
+  return submesh(pose, faces, kept, &original);
 }
 
 /// The largest vertex distance between two poses, over the square root of the area of `truth`.
