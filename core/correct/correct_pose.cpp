@@ -350,8 +350,7 @@ Eigen::MatrixX3d correct_pose(const Eigen::MatrixX3d& reference, const Eigen::Ma
     stage("local correction", 0.0);
     m.local = detail::correct_regions_locally(m.pose, reference_n, faces, classification.reference_intersecting,
                                               device, options);
-    m.new_faces = static_cast<int>(
-        new_intersecting_faces(self_intersecting_faces(m.pose, faces), classification.reference_intersecting).size());
+    m.new_faces = m.local.new_faces_after;
     report.seconds.local_correction += seconds_since(begin);
     stage("local correction", 1.0);
   };

@@ -149,6 +149,7 @@ LocalCorrectionResult correct_regions_locally(Eigen::MatrixX3d& result, const Ei
   }
   if (out.regions == regions_before || current.empty()) break;
   }
+  out.new_faces_after = static_cast<int>(current.size());
   out.vertices = static_cast<int>(std::count(changed.begin(), changed.end(), 1));
   return out;
 }

@@ -16,6 +16,7 @@ namespace posekit::detail {
 
 struct LocalCorrectionResult {
   int new_faces_before = 0;  ///< new intersecting faces when the stage began
+  int new_faces_after = 0;   ///< and when it ended
   int regions = 0;           ///< regions corrected anew and kept
   int vertices = 0;          ///< vertices so changed (each counted once)
 };
