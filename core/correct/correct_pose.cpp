@@ -9,6 +9,7 @@
 
 #include "correct/intersection_fallback.hpp"
 #include "correct/local_correction.hpp"
+#include "correct/region_relaxation.hpp"
 #include "correct/target_reproduction.hpp"
 #include "correct/time_rollback.hpp"
 #include "correct/vertex_classification.hpp"
@@ -56,6 +57,9 @@ void check_options(const CorrectionOptions& options) {
 
 // Rounds in which reproduction widens what it keeps of the integrated result before it gives up.
 constexpr int kReproductionAttempts = 4;
+// The final reproduction starts from the target's intersecting faces alone, so it widens one ring at
+// a time around what it would add, for longer (the cat and lion poses needed two to ten rounds).
+constexpr int kFinalReproductionAttempts = 12;
 
 // Bounds of the automatic time scale: trajectories that hardly move still need time to count, and
 // beyond the authors' equal weighting the fits measured no better.
@@ -257,30 +261,24 @@ Eigen::MatrixX3d correct_pose(const Eigen::MatrixX3d& reference, const Eigen::Ma
   stage("drift compensation", 1.0);
 
   stage_start = Clock::now();
+  const AdjacencyLists neighbours = vertex_neighbours(faces, static_cast<int>(reference.rows()));
+  const detail::FaceTest new_faces = [&](const Eigen::MatrixX3d& pose) {
+    return new_intersecting_faces(self_intersecting_faces(pose, faces), classification.reference_intersecting);
+  };
   if (options.reproduction_rings >= 0) {
-    const AdjacencyLists neighbours = vertex_neighbours(faces, static_cast<int>(reference.rows()));
-    const auto new_faces = [&](const Eigen::MatrixX3d& pose) {
-      return new_intersecting_faces(self_intersecting_faces(pose, faces), classification.reference_intersecting);
-    };
-    const std::vector<int> integrated_faces = new_faces(result_n);
-    std::vector<char> kept = classification.near_intersections;
-    report.reproduction_skipped = true;
-    for (int attempt = 0; attempt < kReproductionAttempts; ++attempt) {
-      const Eigen::VectorXd weights =
-          detail::correction_weights(kept, neighbours, options.reproduction_rings, options.blend_rings);
-      Eigen::MatrixX3d reproduced = detail::blend_towards_target(result_n, target_n, weights);
-      // Faces the blend made intersect: there it folds a corrected region onto the target's shape,
-      // so the integrated result is kept around them too and the blend moves away.
-      const std::vector<int> added = new_intersecting_faces(new_faces(reproduced), integrated_faces);
-      if (added.empty()) {
-        result_n = std::move(reproduced);
-        report.reproduced_vertices = static_cast<int>((weights.array() == 0.0).count());
-        report.reproduction_skipped = false;
-        break;
-      }
-      for (int face : added) {
-        for (int c = 0; c < 3; ++c) kept[static_cast<size_t>(faces(face, c))] = 1;
-      }
+    // Faces the blend makes intersect are where it folds a corrected region onto the target's
+    // shape, so the integrated result is kept around them too and the blend moves away.
+    detail::ReproductionSettings settings;
+    settings.keep_rings = options.reproduction_rings;
+    settings.blend_rings = options.blend_rings;
+    settings.attempts = kReproductionAttempts;
+    detail::Reproduction reproduction = detail::reproduce_target(
+        result_n, target_n, classification.near_intersections, faces, neighbours, settings, new_faces,
+        new_faces(result_n));
+    report.reproduction_skipped = !reproduction.pose;
+    if (reproduction.pose) {
+      result_n = std::move(*reproduction.pose);
+      report.reproduced_vertices = reproduction.reproduced_vertices;
     }
   }
   report.seconds.reproduction = seconds_since(stage_start);
@@ -322,13 +320,15 @@ Eigen::MatrixX3d correct_pose(const Eigen::MatrixX3d& reference, const Eigen::Ma
     }
     return samples;
   };
-  // What the last two stages did to one candidate pose.
+  // What the last stages did to one candidate pose.
   struct Mending {
     Eigen::MatrixX3d pose;
     bool rolled_back = false;
     int rollback_new_faces_before = 0, rollback_regions = 0, rollback_vertices = 0;
     double rollback_earliest_time = 1.0;
     detail::LocalCorrectionResult local;
+    detail::RelaxationResult relaxation;
+    bool from_target = false;
     int new_faces = 0;
   };
   const auto roll_back = [&](Mending& m) {
@@ -348,11 +348,29 @@ Eigen::MatrixX3d correct_pose(const Eigen::MatrixX3d& reference, const Eigen::Ma
   const auto correct_locally = [&](Mending& m) {
     const Clock::time_point begin = Clock::now();
     stage("local correction", 0.0);
-    m.local = detail::correct_regions_locally(m.pose, reference_n, faces, classification.reference_intersecting,
-                                              device, options);
-    m.new_faces = m.local.new_faces_after;
+    const detail::LocalCorrectionResult local = detail::correct_regions_locally(
+        m.pose, reference_n, faces, classification.reference_intersecting, device, options);
+    if (m.local.new_faces_before == 0) m.local.new_faces_before = local.new_faces_before;
+    m.local.new_faces_after = local.new_faces_after;
+    m.local.regions += local.regions;
+    m.local.vertices += local.vertices;
+    m.new_faces = local.new_faces_after;
     report.seconds.local_correction += seconds_since(begin);
     stage("local correction", 1.0);
+  };
+  const auto relax = [&](Mending& m) {
+    if (!options.relaxation || m.new_faces == 0) return;
+    const Clock::time_point begin = Clock::now();
+    stage("relaxation", 0.0);
+    m.relaxation = detail::relax_folded_regions(m.pose, reference_n, faces, classification.reference_intersecting);
+    m.new_faces = m.relaxation.new_faces_after;
+    report.seconds.relaxation += seconds_since(begin);
+    stage("relaxation", 1.0);
+  };
+  const auto median_distance = [&](const Mending& m) { return DriftSummary::of(m.pose - target_n).median; };
+  // Fewer new faces first; between equals, the one nearer the target.
+  const auto better = [&](const Mending& a, const Mending& b) {
+    return a.new_faces != b.new_faces ? a.new_faces < b.new_faces : median_distance(a) < median_distance(b);
   };
   // Rollback first, as it changes least; what it cannot free is corrected again region by region,
   // and what that leaves is rolled back once more. Either stage can spoil the other's chances (a
@@ -365,14 +383,54 @@ Eigen::MatrixX3d correct_pose(const Eigen::MatrixX3d& reference, const Eigen::Ma
     correct_locally(mended);
     if (options.rollback && mended.local.regions > 0) roll_back(mended);
   }
+  relax(mended);
   if (options.rollback && options.local_correction && mended.new_faces > 0) {
     Mending other;
     other.pose = result_n;
     correct_locally(other);
     if (other.new_faces > 0) roll_back(other);
-    if (other.new_faces < mended.new_faces) mended = std::move(other);
+    relax(other);
+    if (better(other, mended)) mended = std::move(other);
+  }
+  // Where the target is entangled over much of the pose, the field leaves most of it off the
+  // target; correcting only the target's own entangled regions, each on its own, can then free
+  // the pose and stay nearer the target (lion-04).
+  if (options.local_correction && mended.new_faces > 0) {
+    Mending from_target;
+    from_target.pose = target_n;
+    from_target.from_target = true;
+    correct_locally(from_target);
+    if (options.rollback && from_target.new_faces > 0) roll_back(from_target);
+    relax(from_target);
+    if (better(from_target, mended)) mended = std::move(from_target);
   }
   result_n = std::move(mended.pose);
+  // The stages since the first reproduction keep or move whole regions; now only the target's own
+  // intersections and what is still new need the corrected positions, and the rest of the pose can
+  // be the target again wherever that adds no intersection.
+  if (options.reproduction_rings >= 0) {
+    const Clock::time_point begin = Clock::now();
+    std::vector<char> kept(static_cast<size_t>(reference.rows()), 0);
+    const std::vector<int> remaining = new_faces(result_n);
+    const std::vector<int> target_new =
+        new_intersecting_faces(classification.target_intersecting, classification.reference_intersecting);
+    for (const std::vector<int>* face_list : {&target_new, &remaining}) {
+      for (int f : *face_list) {
+        for (int c = 0; c < 3; ++c) kept[static_cast<size_t>(faces(f, c))] = 1;
+      }
+    }
+    detail::ReproductionSettings settings;
+    settings.blend_rings = options.blend_rings;
+    settings.widening_rings = 1;
+    settings.attempts = kFinalReproductionAttempts;
+    detail::Reproduction reproduction =
+        detail::reproduce_target(result_n, target_n, kept, faces, neighbours, settings, new_faces, remaining);
+    if (reproduction.pose) {
+      result_n = std::move(*reproduction.pose);
+      report.final_reproduced_vertices = reproduction.reproduced_vertices;
+    }
+    report.seconds.reproduction += seconds_since(begin);
+  }
   report.rollback_new_faces_before = mended.rollback_new_faces_before;
   report.rollback_regions = mended.rollback_regions;
   report.rollback_vertices = mended.rollback_vertices;
@@ -380,6 +438,10 @@ Eigen::MatrixX3d correct_pose(const Eigen::MatrixX3d& reference, const Eigen::Ma
   report.local_new_faces_before = mended.local.new_faces_before;
   report.local_regions = mended.local.regions;
   report.local_vertices = mended.local.vertices;
+  report.local_from_target = mended.from_target;
+  report.relaxation_new_faces_before = mended.relaxation.new_faces_before;
+  report.relaxation_regions = mended.relaxation.regions;
+  report.relaxation_vertices = mended.relaxation.vertices;
 
   stage_start = Clock::now();
   Eigen::MatrixX3d result = normalization.undo(result_n);

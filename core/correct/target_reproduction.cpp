@@ -1,9 +1,12 @@
 #include "correct/target_reproduction.hpp"
 
+#include "correct/vertex_regions.hpp"
+
 #include <posekit/error.hpp>
+#include <posekit/self_intersections.hpp>
 
 #include <algorithm>
-#include <limits>
+#include <utility>
 
 namespace posekit::detail {
 
@@ -15,35 +18,15 @@ Eigen::VectorXd correction_weights(const std::vector<char>& corrected, const Adj
     throw ArgumentError("correction flags for " + std::to_string(corrected.size()) + " vertices, mesh of " +
                         std::to_string(vertex_count));
   }
-  // Ring distance to the nearest corrected vertex, by breadth-first search from all of them.
-  constexpr int kFar = std::numeric_limits<int>::max();
-  std::vector<int> distance(static_cast<size_t>(vertex_count), kFar);
-  std::vector<int> frontier;
-  for (int v = 0; v < vertex_count; ++v) {
-    if (corrected[static_cast<size_t>(v)]) {
-      distance[static_cast<size_t>(v)] = 0;
-      frontier.push_back(v);
-    }
-  }
   const int reach = keep_rings + blend_rings;
-  for (int ring = 1; ring <= reach && !frontier.empty(); ++ring) {
-    std::vector<int> next;
-    for (int v : frontier) {
-      for (int w : neighbours[v]) {
-        if (distance[static_cast<size_t>(w)] != kFar) continue;
-        distance[static_cast<size_t>(w)] = ring;
-        next.push_back(w);
-      }
-    }
-    frontier = std::move(next);
-  }
+  const std::vector<int> distance = ring_distances(corrected, neighbours, reach);
   Eigen::VectorXd weights(vertex_count);
   for (int v = 0; v < vertex_count; ++v) {
     const int d = distance[static_cast<size_t>(v)];
-    if (d <= keep_rings) {
-      weights(v) = 1.0;
-    } else if (d > reach) {
+    if (d < 0) {
       weights(v) = 0.0;
+    } else if (d <= keep_rings) {
+      weights(v) = 1.0;
     } else {
       // Smoothstep from 1 at keep_rings to 0 one ring past the band.
       const double s = static_cast<double>(d - keep_rings) / (blend_rings + 1);
@@ -61,6 +44,32 @@ Eigen::MatrixX3d blend_towards_target(const Eigen::MatrixX3d& integrated, const 
   Eigen::MatrixX3d blended = integrated - target;
   blended.array().colwise() *= weights.array();
   return blended + target;
+}
+
+Reproduction reproduce_target(const Eigen::MatrixX3d& result, const Eigen::MatrixX3d& target, std::vector<char> kept,
+                              const Eigen::MatrixX3i& faces, const AdjacencyLists& neighbours,
+                              const ReproductionSettings& settings, const FaceTest& new_faces,
+                              const std::vector<int>& allowed) {
+  for (int attempt = 0; attempt < settings.attempts; ++attempt) {
+    const Eigen::VectorXd weights = correction_weights(kept, neighbours, settings.keep_rings, settings.blend_rings);
+    Eigen::MatrixX3d reproduced = blend_towards_target(result, target, weights);
+    const std::vector<int> added = new_intersecting_faces(new_faces(reproduced), allowed);
+    if (added.empty()) {
+      Reproduction done;
+      done.reproduced_vertices = static_cast<int>((weights.array() == 0.0).count());
+      done.pose = std::move(reproduced);
+      return done;
+    }
+    std::vector<char> around(kept.size(), 0);
+    for (int face : added) {
+      for (int c = 0; c < 3; ++c) around[static_cast<size_t>(faces(face, c))] = 1;
+    }
+    const std::vector<int> distance = ring_distances(around, neighbours, settings.widening_rings);
+    for (size_t v = 0; v < kept.size(); ++v) {
+      if (distance[v] >= 0) kept[v] = 1;
+    }
+  }
+  return {};
 }
 
 }  // namespace posekit::detail

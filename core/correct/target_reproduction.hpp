@@ -9,6 +9,9 @@
 #include <posekit/topology.hpp>
 
 #include <Eigen/Core>
+
+#include <functional>
+#include <optional>
 #include <vector>
 
 namespace posekit::detail {
@@ -22,5 +25,29 @@ Eigen::VectorXd correction_weights(const std::vector<char>& corrected, const Adj
 /// target + weights * (integrated - target), row by row (#V by 3 each, #V weights).
 Eigen::MatrixX3d blend_towards_target(const Eigen::MatrixX3d& integrated, const Eigen::MatrixX3d& target,
                                       const Eigen::VectorXd& weights);
+
+/// The faces of a pose that intersect and are not the reference's (sorted).
+using FaceTest = std::function<std::vector<int>(const Eigen::MatrixX3d&)>;
+
+struct ReproductionSettings {
+  int keep_rings = 0;      ///< see correction_weights
+  int blend_rings = 0;     ///< see correction_weights
+  int widening_rings = 0;  ///< rings kept around the vertices of faces a blend made intersect
+  int attempts = 1;        ///< blends tried at most
+};
+
+struct Reproduction {
+  std::optional<Eigen::MatrixX3d> pose;  ///< empty when every attempt made faces intersect
+  int reproduced_vertices = 0;           ///< vertices given the target's position exactly
+};
+
+/// Blends `result` towards `target`, keeping it around the `kept` vertices (one flag per vertex),
+/// and where the blend makes faces intersect that are not in `allowed` (sorted; `new_faces` tells
+/// which intersect), keeps the result around those faces too and blends again, up to
+/// `settings.attempts` times.
+Reproduction reproduce_target(const Eigen::MatrixX3d& result, const Eigen::MatrixX3d& target, std::vector<char> kept,
+                              const Eigen::MatrixX3i& faces, const AdjacencyLists& neighbours,
+                              const ReproductionSettings& settings, const FaceTest& new_faces,
+                              const std::vector<int>& allowed);
 
 }  // namespace posekit::detail

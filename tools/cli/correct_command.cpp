@@ -27,6 +27,7 @@ struct CorrectCommandOptions {
   bool no_fallback = false;
   bool no_rollback = false;
   bool no_local_correction = false;
+  bool no_relaxation = false;
   CorrectionOptions correction;
 };
 
@@ -78,11 +79,17 @@ nlohmann::json to_json(const CorrectionReport& report) {
         {"note", report.fallback_note}}},
       {"reproduction",
        {{"vertices", report.reproduced_vertices},
-        {"skipped", report.reproduction_skipped}}},
+        {"skipped", report.reproduction_skipped},
+        {"final_vertices", report.final_reproduced_vertices}}},
       {"local_correction",
        {{"new_faces_before", report.local_new_faces_before},
         {"regions", report.local_regions},
-        {"vertices", report.local_vertices}}},
+        {"vertices", report.local_vertices},
+        {"from_target", report.local_from_target}}},
+      {"relaxation",
+       {{"new_faces_before", report.relaxation_new_faces_before},
+        {"regions", report.relaxation_regions},
+        {"vertices", report.relaxation_vertices}}},
       {"rollback",
        {{"new_faces_before", report.rollback_new_faces_before},
         {"regions", report.rollback_regions},
@@ -110,6 +117,7 @@ nlohmann::json to_json(const CorrectionReport& report) {
         {"verification", report.seconds.verification},
         {"local_correction", report.seconds.local_correction},
         {"rollback", report.seconds.rollback},
+        {"relaxation", report.seconds.relaxation},
         {"total", report.seconds.total}}},
   };
 }
@@ -127,6 +135,7 @@ void run_correct(CorrectCommandOptions options) {
   options.correction.fallback = !options.no_fallback;
   options.correction.rollback = !options.no_rollback;
   options.correction.local_correction = !options.no_local_correction;
+  options.correction.relaxation = !options.no_relaxation;
   std::unique_ptr<Device> device = create_device(options.device);
 
   CorrectionReport report;
@@ -148,7 +157,12 @@ void run_correct(CorrectCommandOptions options) {
   if (!report.fallback_note.empty()) std::cerr << "posekit: note: " << report.fallback_note << "\n";
   if (report.local_regions > 0) {
     std::cerr << "posekit: note: " << report.local_regions << " region(s) (" << report.local_vertices
-              << " vertices) corrected again on their own; " << report.local_new_faces_before
+              << " vertices) " << (report.local_from_target ? "of the target corrected on their own, in place of the integrated result; " : "corrected again on their own; ")
+              << report.local_new_faces_before << " new intersecting faces before\n";
+  }
+  if (report.relaxation_regions > 0) {
+    std::cerr << "posekit: note: " << report.relaxation_regions << " folded region(s) (" << report.relaxation_vertices
+              << " vertices) relaxed towards the reference's shape; " << report.relaxation_new_faces_before
               << " new intersecting faces before\n";
   }
   if (report.rollback_regions > 0) {
@@ -233,6 +247,8 @@ void add_correct_command(CLI::App& app, int& exit_status) {
                     "Do not correct regions that still intersect again on their own");
   command->add_flag("--no-rollback", options->no_rollback,
                     "Do not move regions that still intersect back along their path lines");
+  command->add_flag("--no-relaxation", options->no_relaxation,
+                    "Do not relax folded regions that still intersect towards the reference's shape");
   command->callback([options, &exit_status] { exit_status = run_guarded([&] { run_correct(*options); }); });
 }
 

@@ -51,6 +51,10 @@ struct CorrectionOptions {
   /// Where new intersections remain after the fallback, move their regions back along their path
   /// lines, relative to the surface around them, to the latest clean time (see report).
   bool rollback = true;
+  /// Where new intersections remain after the rollback and the local correction, relax the regions
+  /// around them as-rigid-as-possible towards the reference's local shape, their surroundings held
+  /// in place: it undoes folds (see report).
+  bool relaxation = true;
   /// Which constraints an intersection removes. < 0: a vertex near an intersection in any key frame
   /// loses its whole trajectory, as the authors do. >= 0: only its constraints within this many
   /// key-frame spacings of a frame where it is near one; it keeps the rest of its path, which holds
@@ -61,7 +65,10 @@ struct CorrectionOptions {
   /// into the target over `blend_rings` more; elsewhere the result is the target itself, without the
   /// field's fitting error and drift. < 0 keeps the integrated pose everywhere (the authors'
   /// result). Where the blend would make faces intersect, the integrated result is kept around them
-  /// too (up to four rounds; then reproduction is skipped).
+  /// too (up to four rounds; then reproduction is skipped). After the last stage a final
+  /// reproduction keeps the result only on the faces that intersect in the target (not in the
+  /// reference) and those still new, blended over `blend_rings`, widened a ring at a time around
+  /// what the blend would make intersect (up to twelve rounds).
   int reproduction_rings = 3;
   int blend_rings = 3;               ///< >= 0, see reproduction_rings
 };
@@ -70,7 +77,7 @@ struct CorrectionOptions {
 struct CorrectionTimes {
   double normalization = 0, key_frames = 0, classification = 0, constraints = 0, fitting = 0,
          integration = 0, drift_compensation = 0, reproduction = 0, verification = 0,
-         local_correction = 0, rollback = 0, total = 0;
+         local_correction = 0, rollback = 0, relaxation = 0, total = 0;
 };
 
 /// Median and largest distance between corresponding rows of two poses (in correction reports: the
@@ -110,10 +117,19 @@ struct CorrectionReport {
   int fallback_vertices = 0;        ///< vertices taken from the target or smoothed
   int reproduced_vertices = 0;      ///< vertices given the target's position exactly (0 when skipped)
   bool reproduction_skipped = false;  ///< every margin tried would have added intersecting faces
+  /// Vertices given the target's position by the final reproduction, which keeps the result only
+  /// around the target's own intersections and what is still new (0 when it found no blend).
+  int final_reproduced_vertices = 0;
   std::string fallback_note;        ///< what the fallback did, empty when it did nothing
   int local_new_faces_before = 0;   ///< new intersecting faces when the local correction began (0: it did not run)
   int local_regions = 0;            ///< regions corrected anew on their own
   int local_vertices = 0;           ///< vertices so changed
+  /// The result is the local correction of the target itself (of its own entangled regions), which
+  /// was better than the correction of the integrated result.
+  bool local_from_target = false;
+  int relaxation_new_faces_before = 0;  ///< new intersecting faces when the relaxation began (0: it did not run)
+  int relaxation_regions = 0;       ///< regions relaxed towards the reference's local shape
+  int relaxation_vertices = 0;      ///< vertices so moved
   int rollback_new_faces_before = 0;  ///< new intersecting faces when the rollback began (0: it did not run)
   int rollback_regions = 0;         ///< regions moved back along their path lines
   int rollback_vertices = 0;        ///< vertices so moved (blend included; summed over the two rounds)

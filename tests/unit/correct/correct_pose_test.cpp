@@ -61,6 +61,11 @@ TEST_F(CorrectPose, ReproductionGivesTheTargetAwayFromTheCorrectedJoint) {
   int exact = 0;
   for (Eigen::Index v = 0; v < result.rows(); ++v) exact += result.row(v) == arm_->pose(1).row(v) ? 1 : 0;
   EXPECT_GE(exact, reproduced.reproduced_vertices);
+  // The final reproduction keeps the result only around the target's own intersections, so it
+  // gives back at least as much of the target.
+  EXPECT_EQ(integrated.final_reproduced_vertices, 0);
+  EXPECT_GE(reproduced.final_reproduced_vertices, reproduced.reproduced_vertices);
+  EXPECT_GE(exact, reproduced.final_reproduced_vertices);
   EXPECT_EQ(reproduced.new_intersecting_faces, 0);
   EXPECT_LT(reproduced.median_distance_to_target, integrated.median_distance_to_target);
   EXPECT_GT(reproduced.near_intersection_vertices, 0);

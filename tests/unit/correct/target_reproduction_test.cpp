@@ -1,6 +1,9 @@
 #include "correct/target_reproduction.hpp"
 
+#include "two_sheets.hpp"
+
 #include <posekit/error.hpp>
+#include <posekit/self_intersections.hpp>
 #include <posekit/topology.hpp>
 
 #include <gtest/gtest.h>
@@ -59,6 +62,40 @@ TEST(BlendTowardsTarget, InterpolatesRowByRow) {
   EXPECT_TRUE(blended.row(1).isApprox(Eigen::RowVector3d(1, 1, 1)));
   EXPECT_TRUE(blended.row(2).isZero());
   EXPECT_THROW(blend_towards_target(integrated, target, Eigen::VectorXd::Ones(2)), ArgumentError);
+}
+
+// The target's dent goes through the bottom sheet; the result keeps the top sheet flat. Blended
+// towards the target from nothing kept, the dent would intersect, so the result is kept around it,
+// a ring more each round, until the blend adds no intersection; the rest takes the target's place.
+TEST(ReproduceTarget, KeepsTheResultWhereTheTargetWouldIntersect) {
+  const TwoSheets sheets = two_sheets(21);
+  const Eigen::MatrixX3d result = sheets.vertices;
+  const Eigen::MatrixX3d target = dented(sheets, 0.3) + Eigen::MatrixX3d::Constant(sheets.vertices.rows(), 3, 0.01);
+  ASSERT_FALSE(self_intersecting_faces(target, sheets.faces).empty());
+  const AdjacencyLists neighbours = vertex_neighbours(sheets.faces, static_cast<int>(result.rows()));
+  const FaceTest new_faces = [&](const Eigen::MatrixX3d& pose) { return self_intersecting_faces(pose, sheets.faces); };
+  ReproductionSettings settings;
+  settings.blend_rings = 2;
+  settings.widening_rings = 1;
+  settings.attempts = 12;
+  const Reproduction reproduction =
+      reproduce_target(result, target, std::vector<char>(result.rows(), 0), sheets.faces, neighbours, settings,
+                       new_faces, {});
+  ASSERT_TRUE(reproduction.pose);
+  const Eigen::MatrixX3d& pose = *reproduction.pose;
+  EXPECT_TRUE(self_intersecting_faces(pose, sheets.faces).empty());
+  const int middle = sheets.top(10, 10);
+  EXPECT_EQ(pose.row(middle), result.row(middle));
+  EXPECT_EQ(pose.row(0), target.row(0));
+  EXPECT_EQ(pose.row(sheets.top(0, 0)), target.row(sheets.top(0, 0)));
+  EXPECT_GT(reproduction.reproduced_vertices, static_cast<int>(result.rows()) / 2);
+  EXPECT_LT(reproduction.reproduced_vertices, static_cast<int>(result.rows()));
+
+  // One attempt cannot get there: nothing is blended.
+  settings.attempts = 1;
+  EXPECT_FALSE(reproduce_target(result, target, std::vector<char>(result.rows(), 0), sheets.faces, neighbours,
+                                settings, new_faces, {})
+                   .pose);
 }
 
 }  // namespace
