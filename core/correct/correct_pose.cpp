@@ -55,6 +55,9 @@ void check_options(const CorrectionOptions& options) {
   validate_rk45_options(options.integration);
 }
 
+// An edge this many times as long as in both the reference and the target counts as stretched.
+constexpr double kStretchedFactor = 2.0;
+
 // Rounds in which reproduction widens what it keeps of the integrated result before it gives up.
 constexpr int kReproductionAttempts = 4;
 // The final reproduction starts from the target's intersecting faces alone, so it widens one ring at
@@ -464,6 +467,9 @@ Eigen::MatrixX3d correct_pose(const Eigen::MatrixX3d& reference, const Eigen::Ma
   }
   report.near_intersection_vertices = static_cast<int>(near_rows.size());
   report.median_distance_near_intersections = DriftSummary::of(difference(near_rows, Eigen::all)).median;
+  const Eigen::VectorXd stretch = edge_stretch(result, reference, target, faces);
+  report.stretched_faces = static_cast<int>((stretch.array() > kStretchedFactor).count());
+  report.largest_stretch = stretch.maxCoeff();
   report.seconds.verification += seconds_since(stage_start);
   stage("verification", 1.0);
 

@@ -139,6 +139,10 @@ struct CorrectionReport {
   int near_intersection_vertices = 0;    ///< vertices near an intersection in some key frame
   double median_distance_near_intersections = 0;  ///< of those alone, in the input's units
   double bounding_box_diagonal = 0;      ///< of the reference, in the input's units
+  /// Faces of the result with an edge more than twice as long as in both the reference and the
+  /// target (edge_stretch): where the correction stretched the surface rather than moved it.
+  int stretched_faces = 0;
+  double largest_stretch = 0;            ///< the largest edge_stretch of a face
   std::string device;
   CorrectionTimes seconds;
 };

@@ -1,5 +1,5 @@
-// Per-pose geometric quantities: bounding box, face normals and areas, dihedral angles, and the
-// unit-sphere normalization that puts several poses into one common frame.
+// Per-pose geometric quantities: bounding box, face normals and areas, edge stretch, dihedral
+// angles, and the unit-sphere normalization that puts several poses into one common frame.
 #pragma once
 
 #include <posekit/mesh.hpp>
@@ -22,6 +22,13 @@ Eigen::MatrixX3d face_normals(const Eigen::MatrixX3d& vertices, const Eigen::Mat
 
 /// #F areas of the faces of the #V by 3 `vertices` and #F by 3 `faces`. Throws ArgumentError on a bad index.
 Eigen::VectorXd face_areas(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces);
+
+/// Per face of `faces`, the largest ratio of an edge's length in `pose` to the longer of its lengths in
+/// `first` and `second` (#V by 3 each): how much a face grew beyond both of two poses, as a corrected
+/// pose against its reference and target (2: an edge twice as long as in either). An edge of no
+/// length in both counts 1 while it keeps none, infinity otherwise. Throws ArgumentError on bad sizes.
+Eigen::VectorXd edge_stretch(const Eigen::MatrixX3d& pose, const Eigen::MatrixX3d& first, const Eigen::MatrixX3d& second,
+                             const Eigen::MatrixX3i& faces);
 
 /// Signed dihedral angle in radians, in [-pi, pi], of every edge of `edges` (edge_map(faces)), with
 /// `incident_faces` = edge_faces(edges): the angle between the normals of the edge's two faces, 0 where

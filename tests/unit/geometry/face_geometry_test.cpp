@@ -25,6 +25,25 @@ Eigen::MatrixX3i outward_tetrahedron_faces() {
   return faces;
 }
 
+// A pose 3 times the tetrahedron's size against the tetrahedron and its double: 1.5 on every face.
+// Moving the apex far out stretches only the three faces that hold it.
+TEST(EdgeStretch, IsTheLargestGrowthOfAnEdgeBeyondBothPoses) {
+  const Eigen::MatrixX3d first = corner_tetrahedron();
+  const Eigen::MatrixX3d second = 2.0 * first;
+  const Eigen::MatrixX3i faces = outward_tetrahedron_faces();
+  const Eigen::VectorXd scaled = edge_stretch(3.0 * first, first, second, faces);
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) EXPECT_NEAR(scaled(f), 1.5, 1e-12);
+  EXPECT_NEAR(edge_stretch(first, first, second, faces).maxCoeff(), 0.5, 1e-12);  // shrunk below the double
+  Eigen::MatrixX3d pulled = first;
+  pulled.row(3) << 0, 0, 10;
+  const Eigen::VectorXd stretch = edge_stretch(pulled, first, first, faces);
+  EXPECT_NEAR(stretch(0), 1.0, 1e-12);  // the base, without the apex
+  EXPECT_NEAR(stretch(1), 10.0, 1e-12);  // the edge from the corner to the apex, 1 long before
+  EXPECT_NEAR(stretch(2), 10.0, 1e-12);
+  EXPECT_NEAR(stretch(3), std::sqrt(101.0) / std::sqrt(2.0), 1e-12);
+  EXPECT_THROW(edge_stretch(first.topRows(3), first, first, faces), ArgumentError);
+}
+
 TEST(BoundingBoxDiagonal, IsTheLengthOfTheBoxDiagonal) {
   Eigen::MatrixX3d vertices(3, 3);
   vertices << 1, -2, 0.5,  //
