@@ -381,6 +381,8 @@ Eigen::MatrixX3d correct_pose(const Eigen::MatrixX3d& reference, const Eigen::Ma
   // faces remain the other order is tried too, from the same pose, and the better result kept.
   Mending mended;
   mended.pose = result_n;
+  // The relaxation needs the count the other stages would have given it.
+  if (!options.rollback && !options.local_correction) mended.new_faces = static_cast<int>(new_faces(result_n).size());
   if (options.rollback) roll_back(mended);
   if (options.local_correction && (!mended.rolled_back || mended.new_faces > 0)) {
     correct_locally(mended);

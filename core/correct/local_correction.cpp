@@ -85,69 +85,69 @@ LocalCorrectionResult correct_regions_locally(Eigen::MatrixX3d& result, const Ei
 
   // A correction can uncover or shift a residue, so the passes repeat while they help.
   for (int round = 0; round < kRounds; ++round) {
-  const int regions_before = out.regions;
-  for (const int margin : kMarginRings) {
-    if (current.empty()) break;
-    std::vector<char> seeds(static_cast<size_t>(vertex_count), 0);
-    for (int f : current) {
-      for (int c = 0; c < 3; ++c) seeds[static_cast<size_t>(faces(f, c))] = 1;
-    }
-    const std::vector<int> grown = ring_distances(seeds, neighbours, margin);
-    std::vector<char> near(static_cast<size_t>(vertex_count), 0);
-    for (int v = 0; v < vertex_count; ++v) near[static_cast<size_t>(v)] = grown[static_cast<size_t>(v)] >= 0;
-
-    for (const std::vector<int>& region : linked_regions(connected_sets(near, neighbours), result, faces)) {
+    const int regions_before = out.regions;
+    for (const int margin : kMarginRings) {
       if (current.empty()) break;
-      if (static_cast<double>(region.size()) > kLargestRegionFraction * vertex_count) continue;
-      std::vector<char> inside(static_cast<size_t>(vertex_count), 0);
-      for (int v : region) inside[static_cast<size_t>(v)] = 1;
-      bool touched = false;
+      std::vector<char> seeds(static_cast<size_t>(vertex_count), 0);
       for (int f : current) {
-        for (int c = 0; c < 3; ++c) touched = touched || inside[static_cast<size_t>(faces(f, c))] != 0;
+        for (int c = 0; c < 3; ++c) seeds[static_cast<size_t>(faces(f, c))] = 1;
       }
-      if (!touched) continue;  // an earlier region's correction freed this one
-      std::vector<char> keep(static_cast<size_t>(faces.rows()), 0);
-      for (Eigen::Index f = 0; f < faces.rows(); ++f) {
-        keep[static_cast<size_t>(f)] = inside[static_cast<size_t>(faces(f, 0))] != 0 &&
-                                       inside[static_cast<size_t>(faces(f, 1))] != 0 &&
-                                       inside[static_cast<size_t>(faces(f, 2))] != 0;
-      }
-      std::vector<int> sub_vertices;
-      const Mesh sub = submesh(reference, faces, keep, &sub_vertices);
-      if (sub.faces.rows() < kFewestFaces) continue;
+      const std::vector<int> grown = ring_distances(seeds, neighbours, margin);
+      std::vector<char> near(static_cast<size_t>(vertex_count), 0);
+      for (int v = 0; v < vertex_count; ++v) near[static_cast<size_t>(v)] = grown[static_cast<size_t>(v)] >= 0;
 
-      Eigen::MatrixX3d corrected;
-      try {
-        corrected = correct_pose(sub.vertices, rows_of(result, sub_vertices), sub.faces, device, local);
-      } catch (const DeviceError&) {
-        throw;
-      } catch (const Error&) {
-        continue;  // a region the pipeline cannot take on its own (a degenerate field, say)
+      for (const std::vector<int>& region : linked_regions(connected_sets(near, neighbours), result, faces)) {
+        if (current.empty()) break;
+        if (static_cast<double>(region.size()) > kLargestRegionFraction * vertex_count) continue;
+        std::vector<char> inside(static_cast<size_t>(vertex_count), 0);
+        for (int v : region) inside[static_cast<size_t>(v)] = 1;
+        bool touched = false;
+        for (int f : current) {
+          for (int c = 0; c < 3; ++c) touched = touched || inside[static_cast<size_t>(faces(f, c))] != 0;
+        }
+        if (!touched) continue;  // an earlier region's correction freed this one
+        std::vector<char> keep(static_cast<size_t>(faces.rows()), 0);
+        for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+          keep[static_cast<size_t>(f)] = inside[static_cast<size_t>(faces(f, 0))] != 0 &&
+                                         inside[static_cast<size_t>(faces(f, 1))] != 0 &&
+                                         inside[static_cast<size_t>(faces(f, 2))] != 0;
+        }
+        std::vector<int> sub_vertices;
+        const Mesh sub = submesh(reference, faces, keep, &sub_vertices);
+        if (sub.faces.rows() < kFewestFaces) continue;
+
+        Eigen::MatrixX3d corrected;
+        try {
+          corrected = correct_pose(sub.vertices, rows_of(result, sub_vertices), sub.faces, device, local);
+        } catch (const DeviceError&) {
+          throw;
+        } catch (const Error&) {
+          continue;  // a region the pipeline cannot take on its own (a degenerate field, say)
+        }
+        // Blended in from the region's rim, which keeps its place, so the seam stays closed.
+        std::vector<char> outside(static_cast<size_t>(vertex_count), 0);
+        for (int v = 0; v < vertex_count; ++v) outside[static_cast<size_t>(v)] = inside[static_cast<size_t>(v)] == 0;
+        const std::vector<int> depth = ring_distances(outside, neighbours, options.blend_rings + 1);
+        Eigen::MatrixX3d candidate = result;
+        std::vector<int> moved;
+        for (size_t i = 0; i < sub_vertices.size(); ++i) {
+          const int v = sub_vertices[i];
+          const int d = depth[static_cast<size_t>(v)];
+          const double weight =
+              d < 0 ? 1.0 : std::min(1.0, static_cast<double>(d - 1) / static_cast<double>(options.blend_rings + 1));
+          if (weight <= 0.0) continue;
+          candidate.row(v) += weight * (corrected.row(static_cast<Eigen::Index>(i)) - result.row(v));
+          moved.push_back(v);
+        }
+        std::vector<int> remaining = new_faces(candidate);
+        if (remaining.size() >= current.size()) continue;
+        result = std::move(candidate);
+        current = std::move(remaining);
+        ++out.regions;
+        for (int v : moved) changed[static_cast<size_t>(v)] = 1;
       }
-      // Blended in from the region's rim, which keeps its place, so the seam stays closed.
-      std::vector<char> outside(static_cast<size_t>(vertex_count), 0);
-      for (int v = 0; v < vertex_count; ++v) outside[static_cast<size_t>(v)] = inside[static_cast<size_t>(v)] == 0;
-      const std::vector<int> depth = ring_distances(outside, neighbours, options.blend_rings + 1);
-      Eigen::MatrixX3d candidate = result;
-      std::vector<int> moved;
-      for (size_t i = 0; i < sub_vertices.size(); ++i) {
-        const int v = sub_vertices[i];
-        const int d = depth[static_cast<size_t>(v)];
-        const double weight =
-            d < 0 ? 1.0 : std::min(1.0, static_cast<double>(d - 1) / static_cast<double>(options.blend_rings + 1));
-        if (weight <= 0.0) continue;
-        candidate.row(v) += weight * (corrected.row(static_cast<Eigen::Index>(i)) - result.row(v));
-        moved.push_back(v);
-      }
-      std::vector<int> remaining = new_faces(candidate);
-      if (remaining.size() >= current.size()) continue;
-      result = std::move(candidate);
-      current = std::move(remaining);
-      ++out.regions;
-      for (int v : moved) changed[static_cast<size_t>(v)] = 1;
     }
-  }
-  if (out.regions == regions_before || current.empty()) break;
+    if (out.regions == regions_before || current.empty()) break;
   }
   out.new_faces_after = static_cast<int>(current.size());
   out.vertices = static_cast<int>(std::count(changed.begin(), changed.end(), 1));

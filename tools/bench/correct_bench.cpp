@@ -1,7 +1,8 @@
 // End-to-end pose correction on the CPU device, stage by stage: the generated demo arm (its 135
-// degree bend against the rest pose) and, when ../shared/data is present, lion-reference -> lion-01.
-// Counters are the seconds of each stage of the last iteration, the centers and the new
-// intersecting faces of the result.
+// degree bend against the rest pose) and, when ../shared/data is present, lion-reference -> lion-01
+// (integration leaves little to mend), lion-08 (the rollback, local correction and relaxation
+// work) and lion-04 (the local correction of the target itself). Counters are the seconds of each
+// stage of the last iteration, the centers and the new intersecting faces of the result.
 #include <posekit/correct.hpp>
 #include <posekit/cpu_device.hpp>
 #include <posekit/demo_shape.hpp>
@@ -12,6 +13,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <string>
 
 namespace posekit {
 namespace {
@@ -29,7 +31,11 @@ void correct_and_count(benchmark::State& state, const Eigen::MatrixX3d& referenc
   state.counters["fitting_s"] = report.seconds.fitting;
   state.counters["integration_s"] = report.seconds.integration;
   state.counters["drift_s"] = report.seconds.drift_compensation;
+  state.counters["reproduction_s"] = report.seconds.reproduction;
   state.counters["verification_s"] = report.seconds.verification;
+  state.counters["rollback_s"] = report.seconds.rollback;
+  state.counters["local_s"] = report.seconds.local_correction;
+  state.counters["relaxation_s"] = report.seconds.relaxation;
   state.counters["centers"] = report.fit.centers;
   state.counters["new_faces"] = report.new_intersecting_faces;
 }
@@ -42,17 +48,19 @@ void BM_CorrectDemoArm(benchmark::State& state) {
 }
 BENCHMARK(BM_CorrectDemoArm)->Unit(benchmark::kSecond)->Iterations(1);
 
-void BM_CorrectLion01(benchmark::State& state) {
+void BM_CorrectSharedLionPose(benchmark::State& state, const std::string& pose) {
   const std::filesystem::path folder = std::filesystem::path(POSEKIT_BENCH_DATA_DIR) / "lion-poses";
-  if (!std::filesystem::exists(folder / "lion-01.obj")) {
-    state.SkipWithError("shared pose data not found: lion-poses/lion-01.obj");
+  if (!std::filesystem::exists(folder / (pose + ".obj"))) {
+    state.SkipWithError(("shared pose data not found: lion-poses/" + pose + ".obj").c_str());
     return;
   }
   const Mesh reference = read_mesh(folder / "lion-reference.obj");
-  const Mesh target = read_mesh(folder / "lion-01.obj");
+  const Mesh target = read_mesh(folder / (pose + ".obj"));
   correct_and_count(state, reference.vertices, target.vertices, reference.faces);
 }
-BENCHMARK(BM_CorrectLion01)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_CorrectSharedLionPose, lion_01, std::string("lion-01"))->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_CorrectSharedLionPose, lion_08, std::string("lion-08"))->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_CorrectSharedLionPose, lion_04, std::string("lion-04"))->Unit(benchmark::kSecond)->Iterations(1);
 
 }  // namespace
 }  // namespace posekit
