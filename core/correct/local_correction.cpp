@@ -81,6 +81,7 @@ LocalCorrectionResult correct_regions_locally(Eigen::MatrixX3d& result, const Ei
 
   CorrectionOptions local = options;
   local.local_correction = false;
+  local.intermediate_pose = false;
   local.excluded_vertices.clear();
 
   // A correction can uncover or shift a residue, so the passes repeat while they help.

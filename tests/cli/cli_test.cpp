@@ -207,7 +207,7 @@ TEST_F(CorrectCommand, CorrectsTheDemoArmAndWritesItsReport) {
   EXPECT_GT(report.at("fit").at("centers").get<int>(), 0);
   EXPECT_EQ(report.at("rk45").at("failures"), 0);
   for (const char* stage : {"key_frames", "classification", "fitting", "integration", "verification", "local_correction",
-                            "rollback", "relaxation", "reproduction", "total"}) {
+                            "rollback", "relaxation", "halfway", "reproduction", "total"}) {
     EXPECT_TRUE(report.at("seconds").contains(stage)) << stage;
   }
   // Integration left nothing for the last stages to mend on the demo arm.
@@ -215,6 +215,8 @@ TEST_F(CorrectCommand, CorrectsTheDemoArmAndWritesItsReport) {
   EXPECT_EQ(report.at("rollback").at("regions"), 0);
   EXPECT_EQ(report.at("rollback").at("new_faces_before"), 0);
   EXPECT_EQ(report.at("relaxation").at("regions"), 0);
+  EXPECT_FALSE(report.at("halfway").at("tried").get<bool>());
+  EXPECT_FALSE(report.at("halfway").at("used").get<bool>());
   EXPECT_FALSE(report.at("local_correction").at("from_target").get<bool>());
   // The final reproduction gives most of the arm the target's own positions.
   EXPECT_GT(report.at("reproduction").at("final_vertices").get<int>(), 0);

@@ -28,6 +28,7 @@ struct CorrectCommandOptions {
   bool no_rollback = false;
   bool no_local_correction = false;
   bool no_relaxation = false;
+  bool no_halfway = false;
   CorrectionOptions correction;
 };
 
@@ -86,6 +87,10 @@ nlohmann::json to_json(const CorrectionReport& report) {
         {"regions", report.local_regions},
         {"vertices", report.local_vertices},
         {"from_target", report.local_from_target}}},
+      {"halfway",
+       {{"tried", report.halfway_tried},
+        {"new_faces", report.halfway_new_faces},
+        {"used", report.through_halfway}}},
       {"relaxation",
        {{"new_faces_before", report.relaxation_new_faces_before},
         {"regions", report.relaxation_regions},
@@ -121,6 +126,7 @@ nlohmann::json to_json(const CorrectionReport& report) {
         {"local_correction", report.seconds.local_correction},
         {"rollback", report.seconds.rollback},
         {"relaxation", report.seconds.relaxation},
+        {"halfway", report.seconds.halfway},
         {"total", report.seconds.total}}},
   };
 }
@@ -139,6 +145,7 @@ void run_correct(CorrectCommandOptions options) {
   options.correction.rollback = !options.no_rollback;
   options.correction.local_correction = !options.no_local_correction;
   options.correction.relaxation = !options.no_relaxation;
+  options.correction.intermediate_pose = !options.no_halfway;
   std::unique_ptr<Device> device = create_device(options.device);
 
   CorrectionReport report;
@@ -162,6 +169,10 @@ void run_correct(CorrectCommandOptions options) {
     std::cerr << "posekit: note: " << report.local_regions << " region(s) (" << report.local_vertices
               << " vertices) " << (report.local_from_target ? "of the target corrected on their own, in place of the integrated result; " : "corrected again on their own; ")
               << report.local_new_faces_before << " new intersecting faces before\n";
+  }
+  if (report.through_halfway) {
+    std::cerr << "posekit: note: corrected in two legs through the pose halfway in edge space ("
+              << report.halfway_new_faces << " new intersecting faces there after its correction)\n";
   }
   if (report.relaxation_regions > 0) {
     std::cerr << "posekit: note: " << report.relaxation_regions << " folded region(s) (" << report.relaxation_vertices
@@ -250,6 +261,8 @@ void add_correct_command(CLI::App& app, int& exit_status) {
                     "Do not correct regions that still intersect again on their own");
   command->add_flag("--no-rollback", options->no_rollback,
                     "Do not move regions that still intersect back along their path lines");
+  command->add_flag("--no-halfway", options->no_halfway,
+                    "Do not try the correction in two legs through the halfway pose where faces remain");
   command->add_flag("--no-relaxation", options->no_relaxation,
                     "Do not relax folded regions that still intersect towards the reference's shape");
   command->callback([options, &exit_status] { exit_status = run_guarded([&] { run_correct(*options); }); });

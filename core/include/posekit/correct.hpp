@@ -55,6 +55,10 @@ struct CorrectionOptions {
   /// around them as-rigid-as-possible towards the reference's local shape, their surroundings held
   /// in place: it undoes folds (see report).
   bool relaxation = true;
+  /// Where new intersections remain after all that, correct in two legs through the pose halfway in
+  /// edge space (interpolate_poses, edge method): the reference to that pose, then the corrected
+  /// halfway pose to the target; the better result is kept (see report).
+  bool intermediate_pose = true;
   /// Which constraints an intersection removes. < 0: a vertex near an intersection in any key frame
   /// loses its whole trajectory, as the authors do. >= 0: only its constraints within this many
   /// key-frame spacings of a frame where it is near one; it keeps the rest of its path, which holds
@@ -77,7 +81,7 @@ struct CorrectionOptions {
 struct CorrectionTimes {
   double normalization = 0, key_frames = 0, classification = 0, constraints = 0, fitting = 0,
          integration = 0, drift_compensation = 0, reproduction = 0, verification = 0,
-         local_correction = 0, rollback = 0, relaxation = 0, total = 0;
+         local_correction = 0, rollback = 0, relaxation = 0, halfway = 0, total = 0;
 };
 
 /// Median and largest distance between corresponding rows of two poses (in correction reports: the
@@ -130,6 +134,9 @@ struct CorrectionReport {
   int relaxation_new_faces_before = 0;  ///< new intersecting faces when the relaxation began (0: it did not run)
   int relaxation_regions = 0;       ///< regions relaxed towards the reference's local shape
   int relaxation_vertices = 0;      ///< vertices so moved
+  bool halfway_tried = false;       ///< the two legs through the halfway pose were corrected
+  int halfway_new_faces = 0;        ///< new intersecting faces of the corrected halfway pose
+  bool through_halfway = false;     ///< the result is the two legs', which was better
   int rollback_new_faces_before = 0;  ///< new intersecting faces when the rollback began (0: it did not run)
   int rollback_regions = 0;         ///< regions moved back along their path lines
   int rollback_vertices = 0;        ///< vertices so moved (blend included; summed over the two rounds)

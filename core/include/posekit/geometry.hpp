@@ -24,11 +24,12 @@ Eigen::MatrixX3d face_normals(const Eigen::MatrixX3d& vertices, const Eigen::Mat
 Eigen::VectorXd face_areas(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces);
 
 /// Per face of `faces`, the largest ratio of an edge's length in `pose` to the longer of its lengths in
-/// `first` and `second` (#V by 3 each): how much a face grew beyond both of two poses, as a corrected
-/// pose against its reference and target (2: an edge twice as long as in either). An edge of no
-/// length in both counts 1 while it keeps none, infinity otherwise. Throws ArgumentError on bad sizes.
+/// `first` and `second` (#V by 3 each) and `shortest` (>= 0): how much a face grew beyond both of two
+/// poses, as a corrected pose against its reference and target (2: an edge twice as long as in
+/// either). The floor keeps a sliver that opens to an ordinary face from counting as a spike. An edge
+/// of no length anywhere counts 1, infinity once it has one. Throws ArgumentError on bad arguments.
 Eigen::VectorXd edge_stretch(const Eigen::MatrixX3d& pose, const Eigen::MatrixX3d& first, const Eigen::MatrixX3d& second,
-                             const Eigen::MatrixX3i& faces);
+                             const Eigen::MatrixX3i& faces, double shortest = 0.0);
 
 /// Signed dihedral angle in radians, in [-pi, pi], of every edge of `edges` (edge_map(faces)), with
 /// `incident_faces` = edge_faces(edges): the angle between the normals of the edge's two faces, 0 where

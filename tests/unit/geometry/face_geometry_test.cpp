@@ -41,7 +41,10 @@ TEST(EdgeStretch, IsTheLargestGrowthOfAnEdgeBeyondBothPoses) {
   EXPECT_NEAR(stretch(1), 10.0, 1e-12);  // the edge from the corner to the apex, 1 long before
   EXPECT_NEAR(stretch(2), 10.0, 1e-12);
   EXPECT_NEAR(stretch(3), std::sqrt(101.0) / std::sqrt(2.0), 1e-12);
+  // With a floor of 2 every edge counts as 2 long before; the longest new one, to (1, 0, 0), is sqrt(101).
+  EXPECT_NEAR(edge_stretch(pulled, first, first, faces, 2.0)(1), std::sqrt(101.0) / 2.0, 1e-12);
   EXPECT_THROW(edge_stretch(first.topRows(3), first, first, faces), ArgumentError);
+  EXPECT_THROW(edge_stretch(first, first, first, faces, -1.0), ArgumentError);
 }
 
 TEST(BoundingBoxDiagonal, IsTheLengthOfTheBoxDiagonal) {
