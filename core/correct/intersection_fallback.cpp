@@ -1,5 +1,7 @@
 #include "correct/intersection_fallback.hpp"
 
+#include "correct/vertex_regions.hpp"
+
 #include <posekit/self_intersections.hpp>
 #include <posekit/topology.hpp>
 
@@ -23,26 +25,6 @@ constexpr double kLargestDraggedFraction = 0.1;
 constexpr int kLargestSmoothedRegion = 40;
 
 bool is_set(const Flags& flags, int vertex) { return flags[static_cast<size_t>(vertex)] != 0; }
-
-// Adds every vertex within `rings` edges of a flagged one.
-void grow(Flags& flags, const AdjacencyLists& neighbours, int rings) {
-  std::vector<int> frontier;
-  for (int v = 0; v < static_cast<int>(flags.size()); ++v) {
-    if (is_set(flags, v)) frontier.push_back(v);
-  }
-  for (int ring = 0; ring < rings; ++ring) {
-    std::vector<int> next;
-    for (int v : frontier) {
-      for (int w : neighbours[v]) {
-        if (!is_set(flags, w)) {
-          flags[static_cast<size_t>(w)] = 1;
-          next.push_back(w);
-        }
-      }
-    }
-    frontier = std::move(next);
-  }
-}
 
 // Adds the vertices farther than `threshold` from the target that connect to the flagged ones
 // through such vertices: a part dragged along by an obstacle.
@@ -85,14 +67,6 @@ std::vector<Flags> flagged_regions(const Flags& flagged, const AdjacencyLists& n
     regions.push_back(std::move(region));
   }
   return regions;
-}
-
-Flags vertices_of(const std::vector<int>& face_list, const Eigen::MatrixX3i& faces, Eigen::Index vertex_count) {
-  Flags flags(static_cast<size_t>(vertex_count), 0);
-  for (int f : face_list) {
-    for (int c = 0; c < 3; ++c) flags[static_cast<size_t>(faces(f, c))] = 1;
-  }
-  return flags;
 }
 
 int count(const Flags& flags) { return static_cast<int>(std::count(flags.begin(), flags.end(), 1)); }
@@ -161,19 +135,18 @@ FallbackResult restore_target_regions(Eigen::MatrixX3d& result, const Eigen::Mat
   outcome.new_faces_before = static_cast<int>(current.size());
 
   for (int pass = 0; pass < kPasses && !current.empty(); ++pass) {
-    Flags seeds = vertices_of(current, faces, vertex_count);
-    grow(seeds, neighbours, 1);
+    const Flags seeds = within_rings(face_vertices(current, faces, static_cast<size_t>(vertex_count)), neighbours, 1);
     for (const Flags& component : flagged_regions(seeds, neighbours)) {
       // An earlier replacement in this pass may have settled this one already.
-      if (!overlaps(component, vertices_of(current, faces, vertex_count))) continue;
+      if (!overlaps(component, face_vertices(current, faces, static_cast<size_t>(vertex_count)))) continue;
       // Smallest first: a few rings for a local residue, then the part dragged along.
       std::vector<Flags> regions{component};
       regions.push_back(component);
-      grow(regions.back(), neighbours, 2);
+      regions.back() = within_rings(regions.back(), neighbours, 2);
       if (overlaps(component, in_transit)) {
         Flags dragged = component;
         grow_through_deviation(dragged, neighbours, result, target, deviation_threshold);
-        grow(dragged, neighbours, 1);
+        dragged = within_rings(dragged, neighbours, 1);
         if (count(dragged) <= kLargestDraggedFraction * static_cast<double>(vertex_count)) {
           regions.push_back(std::move(dragged));
         }
@@ -185,7 +158,7 @@ FallbackResult restore_target_regions(Eigen::MatrixX3d& result, const Eigen::Mat
       if (count(component) <= kLargestSmoothedRegion) {
         regions.push_back(component);
         regions.push_back(component);
-        grow(regions.back(), neighbours, 1);
+        regions.back() = within_rings(regions.back(), neighbours, 1);
         if (count(regions.back()) > kLargestSmoothedRegion) regions.pop_back();
       }
       const Eigen::MatrixX3d no_shape = Eigen::MatrixX3d::Zero(result.rows(), 3);
@@ -207,8 +180,8 @@ FallbackResult restore_target_regions(Eigen::MatrixX3d& result, const Eigen::Mat
         best_smoothed = smoothed;
         // Nothing left in or at the replaced region: a larger one would only lose more of the result.
         Flags around = region;
-        grow(around, neighbours, 1);
-        if (!overlaps(around, vertices_of(best_faces, faces, vertex_count))) break;
+        around = within_rings(around, neighbours, 1);
+        if (!overlaps(around, face_vertices(best_faces, faces, static_cast<size_t>(vertex_count)))) break;
       }
       if (best_changed.empty()) {
         ++outcome.rejected_regions;

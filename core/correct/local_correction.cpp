@@ -89,13 +89,8 @@ LocalCorrectionResult correct_regions_locally(Eigen::MatrixX3d& result, const Ei
     const int regions_before = out.regions;
     for (const int margin : kMarginRings) {
       if (current.empty()) break;
-      std::vector<char> seeds(static_cast<size_t>(vertex_count), 0);
-      for (int f : current) {
-        for (int c = 0; c < 3; ++c) seeds[static_cast<size_t>(faces(f, c))] = 1;
-      }
-      const std::vector<int> grown = ring_distances(seeds, neighbours, margin);
-      std::vector<char> near(static_cast<size_t>(vertex_count), 0);
-      for (int v = 0; v < vertex_count; ++v) near[static_cast<size_t>(v)] = grown[static_cast<size_t>(v)] >= 0;
+      const std::vector<char> near =
+          within_rings(face_vertices(current, faces, static_cast<size_t>(vertex_count)), neighbours, margin);
 
       for (const std::vector<int>& region : linked_regions(connected_sets(near, neighbours), result, faces)) {
         if (current.empty()) break;

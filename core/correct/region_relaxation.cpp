@@ -36,19 +36,6 @@ constexpr int kRounds = 3;
 constexpr unsigned kIterations = 20;
 constexpr double kEnergyTolerance = 1e-5;
 
-std::vector<char> flags_of(const std::vector<int>& vertices, size_t size) {
-  std::vector<char> flags(size, 0);
-  for (int v : vertices) flags[static_cast<size_t>(v)] = 1;
-  return flags;
-}
-
-std::vector<char> within(const std::vector<char>& flagged, const AdjacencyLists& neighbours, int rings) {
-  const std::vector<int> distance = ring_distances(flagged, neighbours, rings);
-  std::vector<char> flags(flagged.size(), 0);
-  for (size_t v = 0; v < flags.size(); ++v) flags[v] = distance[v] >= 0;
-  return flags;
-}
-
 bool touches(const std::vector<char>& region, const std::vector<int>& face_list, const Eigen::MatrixX3i& faces) {
   for (int f : face_list) {
     for (int c = 0; c < 3; ++c) {
@@ -64,7 +51,7 @@ bool touches(const std::vector<char>& region, const std::vector<int>& face_list,
 std::optional<Eigen::MatrixX3d> relaxed(const Eigen::MatrixX3d& result, const Eigen::MatrixX3d& reference,
                                         const Eigen::MatrixX3i& faces, const std::vector<char>& region,
                                         const AdjacencyLists& neighbours) {
-  const std::vector<char> with_rim = within(region, neighbours, 1);
+  const std::vector<char> with_rim = within_rings(region, neighbours, 1);
   std::vector<char> keep(static_cast<size_t>(faces.rows()), 0);
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {
     keep[static_cast<size_t>(f)] = with_rim[static_cast<size_t>(faces(f, 0))] != 0 &&
@@ -126,21 +113,18 @@ RelaxationResult relax_folded_regions(Eigen::MatrixX3d& result, const Eigen::Mat
 
   for (int round = 0; round < kRounds && !current.empty(); ++round) {
     const int regions_before = out.regions;
-    std::vector<int> seeds;
-    for (int f : current) {
-      for (int c = 0; c < 3; ++c) seeds.push_back(faces(f, c));
-    }
-    for (const std::vector<int>& component : connected_sets(within(flags_of(seeds, vertex_count), neighbours, 1),
-                                                            neighbours)) {
+    for (const std::vector<int>& component :
+         connected_sets(within_rings(face_vertices(current, faces, vertex_count), neighbours, 1), neighbours)) {
       if (current.empty()) break;
-      const std::vector<char> core = flags_of(component, vertex_count);
+      std::vector<char> core(vertex_count, 0);
+      for (int v : component) core[static_cast<size_t>(v)] = 1;
       if (!touches(core, current, faces)) continue;  // an earlier relaxation settled this one
 
       std::vector<int> best_faces = current;
       std::optional<Eigen::MatrixX3d> best;
       std::vector<char> best_region;
       for (const int margin : kMarginRings) {
-        std::vector<char> region = within(core, neighbours, margin);
+        std::vector<char> region = within_rings(core, neighbours, margin);
         if (static_cast<double>(std::count(region.begin(), region.end(), 1)) >
             kLargestRegionFraction * static_cast<double>(vertex_count)) {
           break;
@@ -153,7 +137,7 @@ RelaxationResult relax_folded_regions(Eigen::MatrixX3d& result, const Eigen::Mat
         best = std::move(candidate);
         best_region = std::move(region);
         // Nothing left in or at the region: a larger one would only lose more of the pose.
-        if (!touches(within(best_region, neighbours, 1), best_faces, faces)) break;
+        if (!touches(within_rings(best_region, neighbours, 1), best_faces, faces)) break;
       }
       if (!best) continue;
       result = std::move(*best);

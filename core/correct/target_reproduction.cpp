@@ -60,14 +60,9 @@ Reproduction reproduce_target(const Eigen::MatrixX3d& result, const Eigen::Matri
       done.pose = std::move(reproduced);
       return done;
     }
-    std::vector<char> around(kept.size(), 0);
-    for (int face : added) {
-      for (int c = 0; c < 3; ++c) around[static_cast<size_t>(faces(face, c))] = 1;
-    }
-    const std::vector<int> distance = ring_distances(around, neighbours, settings.widening_rings);
-    for (size_t v = 0; v < kept.size(); ++v) {
-      if (distance[v] >= 0) kept[v] = 1;
-    }
+    const std::vector<char> around =
+        within_rings(face_vertices(added, faces, kept.size()), neighbours, settings.widening_rings);
+    for (size_t v = 0; v < kept.size(); ++v) kept[v] = kept[v] != 0 || around[v] != 0 ? 1 : 0;
   }
   return {};
 }

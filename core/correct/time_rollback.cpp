@@ -51,13 +51,8 @@ RollbackResult roll_back_regions(Eigen::MatrixX3d& result, const PathSampler& pa
 
   for (const int core_rings : kCoreRings) {
     if (current.empty()) break;
-    std::vector<char> seeds(static_cast<size_t>(vertex_count), 0);
-    for (int f : current) {
-      for (int c = 0; c < 3; ++c) seeds[static_cast<size_t>(faces(f, c))] = 1;
-    }
-    const std::vector<int> core_distance = ring_distances(seeds, neighbours, core_rings);
-    std::vector<char> core(static_cast<size_t>(vertex_count), 0);
-    for (int v = 0; v < vertex_count; ++v) core[static_cast<size_t>(v)] = core_distance[static_cast<size_t>(v)] >= 0;
+    const std::vector<char> core =
+        within_rings(face_vertices(current, faces, static_cast<size_t>(vertex_count)), neighbours, core_rings);
 
     for (const std::vector<int>& region : connected_sets(core, neighbours)) {
       if (current.empty()) break;

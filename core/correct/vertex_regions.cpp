@@ -28,6 +28,21 @@ std::vector<int> ring_distances(const std::vector<char>& flagged, const Adjacenc
   return distance;
 }
 
+std::vector<char> face_vertices(const std::vector<int>& face_list, const Eigen::MatrixX3i& faces, size_t vertex_count) {
+  std::vector<char> flags(vertex_count, 0);
+  for (int f : face_list) {
+    for (int c = 0; c < 3; ++c) flags[static_cast<size_t>(faces(f, c))] = 1;
+  }
+  return flags;
+}
+
+std::vector<char> within_rings(const std::vector<char>& flagged, const AdjacencyLists& neighbours, int rings) {
+  const std::vector<int> distance = ring_distances(flagged, neighbours, rings);
+  std::vector<char> flags(flagged.size(), 0);
+  for (size_t v = 0; v < flags.size(); ++v) flags[v] = distance[v] >= 0 ? 1 : 0;
+  return flags;
+}
+
 std::vector<std::vector<int>> connected_sets(const std::vector<char>& flagged, const AdjacencyLists& neighbours) {
   std::vector<char> seen(flagged.size(), 0);
   std::vector<std::vector<int>> sets;

@@ -4,12 +4,20 @@
 
 #include <posekit/topology.hpp>
 
+#include <Eigen/Core>
+
 #include <vector>
 
 namespace posekit::detail {
 
 /// Edge distance of every vertex from the flagged ones (0 for those), -1 beyond `limit` edges.
 std::vector<int> ring_distances(const std::vector<char>& flagged, const AdjacencyLists& neighbours, int limit);
+
+/// One flag per vertex (`vertex_count` of them), set on the corners of the faces in `face_list`.
+std::vector<char> face_vertices(const std::vector<int>& face_list, const Eigen::MatrixX3i& faces, size_t vertex_count);
+
+/// The flagged vertices and every vertex within `rings` edges of one.
+std::vector<char> within_rings(const std::vector<char>& flagged, const AdjacencyLists& neighbours, int rings);
 
 /// The connected sets of flagged vertices (through edges between flagged vertices), largest first.
 std::vector<std::vector<int>> connected_sets(const std::vector<char>& flagged, const AdjacencyLists& neighbours);
