@@ -97,19 +97,9 @@ LocalCorrectionResult correct_regions_locally(Eigen::MatrixX3d& result, const Ei
         if (static_cast<double>(region.size()) > kLargestRegionFraction * vertex_count) continue;
         std::vector<char> inside(static_cast<size_t>(vertex_count), 0);
         for (int v : region) inside[static_cast<size_t>(v)] = 1;
-        bool touched = false;
-        for (int f : current) {
-          for (int c = 0; c < 3; ++c) touched = touched || inside[static_cast<size_t>(faces(f, c))] != 0;
-        }
-        if (!touched) continue;  // an earlier region's correction freed this one
-        std::vector<char> keep(static_cast<size_t>(faces.rows()), 0);
-        for (Eigen::Index f = 0; f < faces.rows(); ++f) {
-          keep[static_cast<size_t>(f)] = inside[static_cast<size_t>(faces(f, 0))] != 0 &&
-                                         inside[static_cast<size_t>(faces(f, 1))] != 0 &&
-                                         inside[static_cast<size_t>(faces(f, 2))] != 0;
-        }
+        if (!touches(inside, current, faces)) continue;  // an earlier region's correction freed this one
         std::vector<int> sub_vertices;
-        const Mesh sub = submesh(reference, faces, keep, &sub_vertices);
+        const Mesh sub = submesh(reference, faces, faces_within(inside, faces), &sub_vertices);
         if (sub.faces.rows() < kFewestFaces) continue;
 
         Eigen::MatrixX3d corrected;

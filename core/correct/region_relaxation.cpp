@@ -36,15 +36,6 @@ constexpr int kRounds = 3;
 constexpr unsigned kIterations = 20;
 constexpr double kEnergyTolerance = 1e-5;
 
-bool touches(const std::vector<char>& region, const std::vector<int>& face_list, const Eigen::MatrixX3i& faces) {
-  for (int f : face_list) {
-    for (int c = 0; c < 3; ++c) {
-      if (region[static_cast<size_t>(faces(f, c))] != 0) return true;
-    }
-  }
-  return false;
-}
-
 // `result` with the region's vertices moved as-rigid-as-possible towards the reference's shape of
 // the region, the ring around it held at its place in `result`. Nothing where the region's
 // surface is not a manifold CGAL can take, or where the solve fails.
@@ -52,14 +43,8 @@ std::optional<Eigen::MatrixX3d> relaxed(const Eigen::MatrixX3d& result, const Ei
                                         const Eigen::MatrixX3i& faces, const std::vector<char>& region,
                                         const AdjacencyLists& neighbours) {
   const std::vector<char> with_rim = within_rings(region, neighbours, 1);
-  std::vector<char> keep(static_cast<size_t>(faces.rows()), 0);
-  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
-    keep[static_cast<size_t>(f)] = with_rim[static_cast<size_t>(faces(f, 0))] != 0 &&
-                                   with_rim[static_cast<size_t>(faces(f, 1))] != 0 &&
-                                   with_rim[static_cast<size_t>(faces(f, 2))] != 0;
-  }
   std::vector<int> original;
-  const Mesh part = submesh(reference, faces, keep, &original);
+  const Mesh part = submesh(reference, faces, faces_within(with_rim, faces), &original);
 
   TriangleMesh mesh;
   for (Eigen::Index v = 0; v < part.vertices.rows(); ++v) {

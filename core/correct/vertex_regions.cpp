@@ -43,6 +43,25 @@ std::vector<char> within_rings(const std::vector<char>& flagged, const Adjacency
   return flags;
 }
 
+std::vector<char> faces_within(const std::vector<char>& flagged, const Eigen::MatrixX3i& faces) {
+  std::vector<char> inside(static_cast<size_t>(faces.rows()), 0);
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    inside[static_cast<size_t>(f)] = flagged[static_cast<size_t>(faces(f, 0))] != 0 &&
+                                     flagged[static_cast<size_t>(faces(f, 1))] != 0 &&
+                                     flagged[static_cast<size_t>(faces(f, 2))] != 0;
+  }
+  return inside;
+}
+
+bool touches(const std::vector<char>& flagged, const std::vector<int>& face_list, const Eigen::MatrixX3i& faces) {
+  for (int f : face_list) {
+    for (int c = 0; c < 3; ++c) {
+      if (flagged[static_cast<size_t>(faces(f, c))] != 0) return true;
+    }
+  }
+  return false;
+}
+
 std::vector<std::vector<int>> connected_sets(const std::vector<char>& flagged, const AdjacencyLists& neighbours) {
   std::vector<char> seen(flagged.size(), 0);
   std::vector<std::vector<int>> sets;

@@ -19,6 +19,12 @@ std::vector<char> face_vertices(const std::vector<int>& face_list, const Eigen::
 /// The flagged vertices and every vertex within `rings` edges of one.
 std::vector<char> within_rings(const std::vector<char>& flagged, const AdjacencyLists& neighbours, int rings);
 
+/// One flag per face of `faces`: set where all three corners are flagged.
+std::vector<char> faces_within(const std::vector<char>& flagged, const Eigen::MatrixX3i& faces);
+
+/// Whether a face of `face_list` has a flagged corner.
+bool touches(const std::vector<char>& flagged, const std::vector<int>& face_list, const Eigen::MatrixX3i& faces);
+
 /// The connected sets of flagged vertices (through edges between flagged vertices), largest first.
 std::vector<std::vector<int>> connected_sets(const std::vector<char>& flagged, const AdjacencyLists& neighbours);
 
