@@ -36,15 +36,18 @@ constexpr int kRounds = 3;
 constexpr unsigned kIterations = 20;
 constexpr double kEnergyTolerance = 1e-5;
 
-// `result` with the region's vertices moved as-rigid-as-possible towards the reference's shape of
-// the region, the ring around it held at its place in `result`. Nothing where the region's
-// surface is not a manifold CGAL can take, or where the solve fails.
-std::optional<Eigen::MatrixX3d> relaxed(const Eigen::MatrixX3d& result, const Eigen::MatrixX3d& reference,
-                                        const Eigen::MatrixX3i& faces, const std::vector<char>& region,
-                                        const AdjacencyLists& neighbours) {
-  const std::vector<char> with_rim = within_rings(region, neighbours, 1);
+}  // namespace
+
+std::optional<Eigen::MatrixX3d> as_rigid_as_possible(const Eigen::MatrixX3d& rest, const Eigen::MatrixX3d& current,
+                                                     const Eigen::MatrixX3i& faces, const std::vector<char>& free,
+                                                     const std::vector<char>& handles,
+                                                     const Eigen::MatrixX3d& handle_positions,
+                                                     const AdjacencyLists& neighbours) {
+  std::vector<char> moving(free.size());
+  for (size_t v = 0; v < free.size(); ++v) moving[v] = free[v] != 0 || handles[v] != 0 ? 1 : 0;
+  const std::vector<char> with_rim = within_rings(moving, neighbours, 1);
   std::vector<int> original;
-  const Mesh part = submesh(reference, faces, faces_within(with_rim, faces), &original);
+  const Mesh part = submesh(rest, faces, faces_within(with_rim, faces), &original);
 
   TriangleMesh mesh;
   for (Eigen::Index v = 0; v < part.vertices.rows(); ++v) {
@@ -58,23 +61,28 @@ std::optional<Eigen::MatrixX3d> relaxed(const Eigen::MatrixX3d& result, const Ei
   }
 
   Deformation deformation(mesh);
+  const auto hold = [&](MeshVertex vertex, const Eigen::MatrixX3d& positions, int row) {
+    deformation.insert_control_vertex(vertex);
+    deformation.set_target_position(vertex, Kernel::Point_3(positions(row, 0), positions(row, 1), positions(row, 2)));
+  };
   for (Eigen::Index v = 0; v < part.vertices.rows(); ++v) {
     const MeshVertex vertex(static_cast<unsigned>(v));
     const int w = original[static_cast<size_t>(v)];
-    if (region[static_cast<size_t>(w)] != 0) {
+    if (handles[static_cast<size_t>(w)] != 0) {
+      hold(vertex, handle_positions, w);
+    } else if (free[static_cast<size_t>(w)] != 0) {
       deformation.insert_roi_vertex(vertex);
     } else {
-      deformation.insert_control_vertex(vertex);
-      deformation.set_target_position(vertex, Kernel::Point_3(result(w, 0), result(w, 1), result(w, 2)));
+      hold(vertex, current, w);
     }
   }
   if (!deformation.preprocess()) return std::nullopt;
   deformation.deform(kIterations, kEnergyTolerance);
 
-  Eigen::MatrixX3d candidate = result;
+  Eigen::MatrixX3d candidate = current;
   for (Eigen::Index v = 0; v < part.vertices.rows(); ++v) {
     const int w = original[static_cast<size_t>(v)];
-    if (region[static_cast<size_t>(w)] == 0) continue;
+    if (moving[static_cast<size_t>(w)] == 0) continue;
     const Kernel::Point_3& p = mesh.point(MeshVertex(static_cast<unsigned>(v)));
     candidate.row(w) << p.x(), p.y(), p.z();
     if (!candidate.row(w).allFinite()) return std::nullopt;
@@ -82,10 +90,9 @@ std::optional<Eigen::MatrixX3d> relaxed(const Eigen::MatrixX3d& result, const Ei
   return candidate;
 }
 
-}  // namespace
-
 RelaxationResult relax_folded_regions(Eigen::MatrixX3d& result, const Eigen::MatrixX3d& reference,
-                                      const Eigen::MatrixX3i& faces, const std::vector<int>& reference_intersecting) {
+                                      const Eigen::MatrixX3i& faces, const std::vector<int>& reference_intersecting,
+                                      const RelaxationLimits& limits) {
   const auto vertex_count = static_cast<size_t>(result.rows());
   const auto new_faces = [&](const Eigen::MatrixX3d& pose) {
     return new_intersecting_faces(self_intersecting_faces(pose, faces), reference_intersecting);
@@ -95,6 +102,7 @@ RelaxationResult relax_folded_regions(Eigen::MatrixX3d& result, const Eigen::Mat
   out.new_faces_before = static_cast<int>(current.size());
   const AdjacencyLists neighbours = vertex_neighbours(faces, static_cast<int>(vertex_count));
   std::vector<char> moved(vertex_count, 0);
+  const std::vector<char> no_handles(vertex_count, 0);
 
   for (int round = 0; round < kRounds && !current.empty(); ++round) {
     const int regions_before = out.regions;
@@ -109,13 +117,16 @@ RelaxationResult relax_folded_regions(Eigen::MatrixX3d& result, const Eigen::Mat
       std::optional<Eigen::MatrixX3d> best;
       std::vector<char> best_region;
       for (const int margin : kMarginRings) {
+        if (margin > limits.widest_margin) break;
         std::vector<char> region = within_rings(core, neighbours, margin);
         if (static_cast<double>(std::count(region.begin(), region.end(), 1)) >
             kLargestRegionFraction * static_cast<double>(vertex_count)) {
           break;
         }
-        std::optional<Eigen::MatrixX3d> candidate = relaxed(result, reference, faces, region, neighbours);
+        std::optional<Eigen::MatrixX3d> candidate =
+            as_rigid_as_possible(reference, result, faces, region, no_handles, result, neighbours);
         if (!candidate) continue;
+        if (((*candidate - result).rowwise().norm().array() > limits.largest_move).any()) continue;
         std::vector<int> remaining = new_faces(*candidate);
         if (remaining.size() >= best_faces.size()) continue;
         best_faces = std::move(remaining);

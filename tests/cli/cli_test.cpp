@@ -207,7 +207,7 @@ TEST_F(CorrectCommand, CorrectsTheDemoArmAndWritesItsReport) {
   EXPECT_GT(report.at("fit").at("centers").get<int>(), 0);
   EXPECT_EQ(report.at("rk45").at("failures"), 0);
   for (const char* stage : {"key_frames", "classification", "fitting", "integration", "verification", "local_correction",
-                            "rollback", "relaxation", "halfway", "reproduction", "total"}) {
+                            "rollback", "relaxation", "halfway", "contact_separation", "reproduction", "total"}) {
     EXPECT_TRUE(report.at("seconds").contains(stage)) << stage;
   }
   // Integration left nothing for the last stages to mend on the demo arm.
@@ -217,6 +217,10 @@ TEST_F(CorrectCommand, CorrectsTheDemoArmAndWritesItsReport) {
   EXPECT_EQ(report.at("relaxation").at("regions"), 0);
   EXPECT_FALSE(report.at("halfway").at("tried").get<bool>());
   EXPECT_FALSE(report.at("halfway").at("used").get<bool>());
+  // Nor strayed from the target: the target's contacts were not separated instead.
+  EXPECT_FALSE(report.at("contact_separation").at("tried").get<bool>());
+  EXPECT_FALSE(report.at("contact_separation").at("used").get<bool>());
+  EXPECT_EQ(report.at("contact_separation").at("rounds"), 0);
   EXPECT_FALSE(report.at("local_correction").at("from_target").get<bool>());
   // The final reproduction gives most of the arm the target's own positions.
   EXPECT_GT(report.at("reproduction").at("final_vertices").get<int>(), 0);
@@ -251,6 +255,7 @@ TEST_F(CorrectCommand, RejectsParametersOutOfRange) {
   expect_failure_without_output(run_posekit({"correct", rest_, bent_, "-o", output_, "--key-frames", "1"}), 2);
   expect_failure_without_output(run_posekit({"correct", rest_, bent_, "-o", output_, "--error-factor", "-1"}), 2);
   expect_failure_without_output(run_posekit({"correct", rest_, bent_, "-o", output_, "--intersection-substeps", "0"}), 2);
+  expect_failure_without_output(run_posekit({"correct", rest_, bent_, "-o", output_, "--separation-tolerance", "0"}), 2);
   expect_failure_without_output(run_posekit({"correct", rest_, bent_, "-o", output_, "--device", "abacus"}), 1);
 }
 

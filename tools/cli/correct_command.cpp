@@ -29,6 +29,7 @@ struct CorrectCommandOptions {
   bool no_local_correction = false;
   bool no_relaxation = false;
   bool no_halfway = false;
+  bool no_contact_separation = false;
   CorrectionOptions correction;
 };
 
@@ -91,6 +92,11 @@ nlohmann::json to_json(const CorrectionReport& report) {
        {{"tried", report.halfway_tried},
         {"new_faces", report.halfway_new_faces},
         {"used", report.through_halfway}}},
+      {"contact_separation",
+       {{"tried", report.separation_tried},
+        {"new_faces", report.separation_new_faces},
+        {"rounds", report.separation_rounds},
+        {"used", report.separated}}},
       {"relaxation",
        {{"new_faces_before", report.relaxation_new_faces_before},
         {"regions", report.relaxation_regions},
@@ -127,6 +133,7 @@ nlohmann::json to_json(const CorrectionReport& report) {
         {"rollback", report.seconds.rollback},
         {"relaxation", report.seconds.relaxation},
         {"halfway", report.seconds.halfway},
+        {"contact_separation", report.seconds.separation},
         {"total", report.seconds.total}}},
   };
 }
@@ -146,6 +153,7 @@ void run_correct(CorrectCommandOptions options) {
   options.correction.local_correction = !options.no_local_correction;
   options.correction.relaxation = !options.no_relaxation;
   options.correction.intermediate_pose = !options.no_halfway;
+  options.correction.contact_separation = !options.no_contact_separation;
   std::unique_ptr<Device> device = create_device(options.device);
 
   CorrectionReport report;
@@ -173,6 +181,11 @@ void run_correct(CorrectCommandOptions options) {
   if (report.through_halfway) {
     std::cerr << "posekit: note: corrected in two legs through the pose halfway in edge space ("
               << report.halfway_new_faces << " new intersecting faces there after its correction)\n";
+  }
+  if (report.separated) {
+    std::cerr << "posekit: note: the result is the target with its own contacts separated, which was nearer the "
+                 "target than the field's correction ("
+              << report.separation_rounds << " rounds)\n";
   }
   if (report.relaxation_regions > 0) {
     std::cerr << "posekit: note: " << report.relaxation_regions << " folded region(s) (" << report.relaxation_vertices
@@ -244,6 +257,11 @@ void add_correct_command(CLI::App& app, int& exit_status) {
   command->add_option("--blend-rings", c.blend_rings, "Rings over which the integrated result blends into the target")
       ->check(CLI::Range(0, 1000))
       ->capture_default_str();
+  command->add_option("--separation-tolerance", c.separation_tolerance,
+                      "Separate the target's own contacts where the corrected pose's median distance to the target "
+                      "is above this fraction of the bounding-box diagonal (or new faces remain); keep the better")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   command->add_option("--max-centers", c.max_centers, "Upper bound on the number of centers")
       ->check(CLI::Range(17, 10000000))
       ->capture_default_str();
@@ -263,6 +281,8 @@ void add_correct_command(CLI::App& app, int& exit_status) {
                     "Do not move regions that still intersect back along their path lines");
   command->add_flag("--no-halfway", options->no_halfway,
                     "Do not try the correction in two legs through the halfway pose where faces remain");
+  command->add_flag("--no-contact-separation", options->no_contact_separation,
+                    "Do not try separating the target's own contacts where the correction strays from the target");
   command->add_flag("--no-relaxation", options->no_relaxation,
                     "Do not relax folded regions that still intersect towards the reference's shape");
   command->callback([options, &exit_status] { exit_status = run_guarded([&] { run_correct(*options); }); });

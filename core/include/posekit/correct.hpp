@@ -59,6 +59,14 @@ struct CorrectionOptions {
   /// edge space (interpolate_poses, edge method): the reference to that pose, then the corrected
   /// halfway pose to the target; the better result is kept (see report).
   bool intermediate_pose = true;
+  /// Where the result still has new intersections, or its median distance to the target is above
+  /// `separation_tolerance` of the reference's bounding-box diagonal (the correction moved most of
+  /// the pose), the target's own contacts are separated instead: each part pushed back into itself
+  /// where it lies in another, its surroundings following as-rigidly-as-possible, folds relaxed.
+  /// The better of the two is kept: fewer new intersecting faces, then nearer the target (see report).
+  /// Not with reproduction_rings < 0, which asks for the integrated result.
+  bool contact_separation = true;
+  double separation_tolerance = 1e-3;  ///< > 0, see contact_separation
   /// Which constraints an intersection removes. < 0: a vertex near an intersection in any key frame
   /// loses its whole trajectory, as the authors do. >= 0: only its constraints within this many
   /// key-frame spacings of a frame where it is near one; it keeps the rest of its path, which holds
@@ -81,7 +89,7 @@ struct CorrectionOptions {
 struct CorrectionTimes {
   double normalization = 0, key_frames = 0, classification = 0, constraints = 0, fitting = 0,
          integration = 0, drift_compensation = 0, reproduction = 0, verification = 0,
-         local_correction = 0, rollback = 0, relaxation = 0, halfway = 0, total = 0;
+         local_correction = 0, rollback = 0, relaxation = 0, halfway = 0, separation = 0, total = 0;
 };
 
 /// Median and largest distance between corresponding rows of two poses (in correction reports: the
@@ -137,6 +145,10 @@ struct CorrectionReport {
   bool halfway_tried = false;       ///< the two legs through the halfway pose were corrected
   int halfway_new_faces = 0;        ///< new intersecting faces of the corrected halfway pose
   bool through_halfway = false;     ///< the result is the two legs', which was better
+  bool separation_tried = false;    ///< the target's contacts were separated (see contact_separation)
+  int separation_new_faces = 0;     ///< new intersecting faces of the separated target
+  int separation_rounds = 0;        ///< push and relaxation rounds it ran
+  bool separated = false;           ///< the result is the separated target, which was better
   int rollback_new_faces_before = 0;  ///< new intersecting faces when the rollback began (0: it did not run)
   int rollback_regions = 0;         ///< regions moved back along their path lines
   int rollback_vertices = 0;        ///< vertices so moved (blend included; summed over the two rounds)

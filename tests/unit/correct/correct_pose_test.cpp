@@ -7,6 +7,8 @@
 #include <posekit/geometry.hpp>
 #include <posekit/self_intersections.hpp>
 
+#include "two_spheres.hpp"
+
 #include <limits>
 
 
@@ -136,6 +138,47 @@ TEST_F(CorrectPose, RejectsBadInput) {
   options = {};
   options.drift_passes = -1;
   EXPECT_THROW(correct_pose(arm_->pose(0), arm_->pose(1), arm_->faces(), *device_, options), ArgumentError);
+  options = {};
+  options.separation_tolerance = 0.0;
+  EXPECT_THROW(correct_pose(arm_->pose(0), arm_->pose(1), arm_->faces(), *device_, options), ArgumentError);
+}
+
+// The separation of the target's contacts runs only where the field's result misses the tolerance
+// (or keeps new faces), and replaces it only when it is better. Pressed deep into each other, two
+// spheres come out of the field clean but off the target over most of their surface; their
+// separation leaves faces intersecting, so the field's result stays.
+TEST(CorrectPoseContactSeparation, RunsWhereTheResultStraysAndKeepsTheBetter) {
+  const Mesh apart = testing::two_spheres(3.0);
+  const Mesh pressed = testing::two_spheres(0.8);
+  const std::unique_ptr<Device> device = make_cpu_device();
+  CorrectionReport by_default;
+  correct_pose(apart.vertices, pressed.vertices, apart.faces, *device, {}, &by_default);
+  EXPECT_EQ(by_default.new_intersecting_faces, 0);
+  ASSERT_GT(by_default.median_distance_to_target, 0.0);
+  ASSERT_LT(by_default.median_distance_to_target, 1e-3 * by_default.bounding_box_diagonal);
+  EXPECT_FALSE(by_default.separation_tried);
+
+  CorrectionOptions options;
+  options.separation_tolerance = 1e-6;
+  CorrectionReport strict;
+  const Eigen::MatrixX3d result = correct_pose(apart.vertices, pressed.vertices, apart.faces, *device, options, &strict);
+  EXPECT_TRUE(strict.separation_tried);
+  EXPECT_GT(strict.separation_rounds, 0);
+  EXPECT_GT(strict.separation_new_faces, 0);
+  EXPECT_FALSE(strict.separated);
+  EXPECT_EQ(strict.new_intersecting_faces, 0);
+  EXPECT_TRUE(self_intersecting_faces(result, apart.faces).empty());
+  EXPECT_EQ(strict.median_distance_to_target, by_default.median_distance_to_target);
+
+  options.contact_separation = false;
+  CorrectionReport without;
+  correct_pose(apart.vertices, pressed.vertices, apart.faces, *device, options, &without);
+  EXPECT_FALSE(without.separation_tried);
+  options.contact_separation = true;
+  options.reproduction_rings = -1;
+  CorrectionReport integrated;
+  correct_pose(apart.vertices, pressed.vertices, apart.faces, *device, options, &integrated);
+  EXPECT_FALSE(integrated.separation_tried);
 }
 
 TEST_F(CorrectPose, DriftCompensationBringsConstrainedVerticesCloserToTheTarget) {

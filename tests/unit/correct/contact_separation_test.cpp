@@ -1,0 +1,62 @@
+#include "correct/contact_separation.hpp"
+
+#include "two_spheres.hpp"
+
+#include <posekit/self_intersections.hpp>
+
+#include <gtest/gtest.h>
+
+namespace posekit::detail {
+namespace {
+
+using testing::two_spheres;
+
+TEST(ContactSeparation, WindingNumberIsOneInsideHalfOnTheSurfaceZeroOutside) {
+  const Mesh sphere = testing::icosphere(3);
+  Eigen::MatrixX3d points(4, 3);
+  points << 0, 0, 0, 0.5, 0.2, -0.1, 3, 0, 0, 0, 0, 0;
+  points.row(3) = sphere.vertices.row(100);
+  const Eigen::VectorXd winding = winding_numbers(sphere.vertices, sphere.faces, points);
+  EXPECT_NEAR(winding(0), 1.0, 1e-9);
+  EXPECT_NEAR(winding(1), 1.0, 1e-9);
+  EXPECT_NEAR(winding(2), 0.0, 1e-9);
+  EXPECT_NEAR(winding(3), 0.5, 0.05);
+}
+
+// Pressed a fifth of their radius into each other, the spheres are pushed apart where they
+// overlap, and their far sides keep the target's positions exactly.
+TEST(ContactSeparation, SeparatesOverlappingPartsAndLeavesTheRestAlone) {
+  const Mesh apart = two_spheres(3.0);
+  const Mesh pressed = two_spheres(1.6);
+  ASSERT_TRUE(self_intersecting_faces(apart.vertices, apart.faces).empty());
+  const auto overlapping = static_cast<int>(self_intersecting_faces(pressed.vertices, pressed.faces).size());
+  ASSERT_GT(overlapping, 0);
+
+  const SeparationResult separation = separate_contacts(pressed.vertices, apart.vertices, apart.faces, {});
+  EXPECT_EQ(separation.new_faces_before, overlapping);
+  EXPECT_EQ(separation.new_faces_after, 0);
+  EXPECT_GT(separation.iterations, 0);
+  EXPECT_TRUE(self_intersecting_faces(separation.pose, apart.faces).empty());
+  int unchanged = 0;
+  for (Eigen::Index v = 0; v < pressed.vertices.rows(); ++v) {
+    if (std::abs(pressed.vertices(v, 0)) > 0.5) {
+      EXPECT_EQ(separation.pose.row(v), pressed.vertices.row(v)) << v;
+    }
+    if (separation.pose.row(v) == pressed.vertices.row(v)) ++unchanged;
+  }
+  EXPECT_GT(unchanged, pressed.vertices.rows() / 2);
+}
+
+// Intersections the reference has too are not the stage's to remove.
+TEST(ContactSeparation, LeavesTheReferencesOwnIntersectionsAlone) {
+  const Mesh pressed = two_spheres(1.6);
+  const std::vector<int> intersecting = self_intersecting_faces(pressed.vertices, pressed.faces);
+  const SeparationResult separation =
+      separate_contacts(pressed.vertices, pressed.vertices, pressed.faces, intersecting);
+  EXPECT_EQ(separation.new_faces_before, 0);
+  EXPECT_EQ(separation.iterations, 0);
+  EXPECT_EQ(separation.pose, pressed.vertices);
+}
+
+}  // namespace
+}  // namespace posekit::detail
