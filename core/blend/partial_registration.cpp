@@ -23,21 +23,6 @@ using VertexTree = nanoflann::KDTreeEigenMatrixAdaptor<Eigen::MatrixX3d, 3, nano
 
 constexpr double kPi = 3.14159265358979323846;
 
-// Area-weighted vertex normals; zero where a vertex has no face of non-zero area.
-Eigen::MatrixX3d vertex_normals(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces) {
-  Eigen::MatrixX3d normals = Eigen::MatrixX3d::Zero(vertices.rows(), 3);
-  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
-    const Eigen::RowVector3d a = vertices.row(faces(f, 0));
-    const Eigen::RowVector3d n = (vertices.row(faces(f, 1)) - a).cross(vertices.row(faces(f, 2)) - a);
-    for (int corner = 0; corner < 3; ++corner) normals.row(faces(f, corner)) += n;
-  }
-  for (Eigen::Index v = 0; v < normals.rows(); ++v) {
-    const double length = normals.row(v).norm();
-    if (length > 0.0) normals.row(v) /= length;
-  }
-  return normals;
-}
-
 struct Match {
   int face = -1;
   Eigen::Vector3d barycentric = Eigen::Vector3d::Zero();

@@ -35,4 +35,18 @@ Eigen::VectorXd face_areas(const Eigen::MatrixX3d& vertices, const Eigen::Matrix
   return areas;
 }
 
+Eigen::MatrixX3d vertex_normals(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces) {
+  check_face_indices(faces, static_cast<int>(vertices.rows()));
+  Eigen::MatrixX3d normals = Eigen::MatrixX3d::Zero(vertices.rows(), 3);
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    const Eigen::RowVector3d n = area_vector(vertices, faces, f);
+    for (int corner = 0; corner < 3; ++corner) normals.row(faces(f, corner)) += n;
+  }
+  for (Eigen::Index v = 0; v < normals.rows(); ++v) {
+    const double length = normals.row(v).norm();
+    if (length > 0.0) normals.row(v) /= length;
+  }
+  return normals;
+}
+
 }  // namespace posekit

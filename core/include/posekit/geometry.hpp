@@ -23,6 +23,10 @@ Eigen::MatrixX3d face_normals(const Eigen::MatrixX3d& vertices, const Eigen::Mat
 /// #F areas of the faces of the #V by 3 `vertices` and #F by 3 `faces`. Throws ArgumentError on a bad index.
 Eigen::VectorXd face_areas(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces);
 
+/// #V by 3 unit vertex normals: the area-weighted sum of the normals of the faces around each vertex.
+/// A vertex without a face of non-zero area gets a zero row. Throws ArgumentError on a bad index.
+Eigen::MatrixX3d vertex_normals(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces);
+
 /// Per face of `faces`, the largest ratio of an edge's length in `pose` to the longer of its lengths in
 /// `first` and `second` (#V by 3 each) and `shortest` (>= 0): how much a face grew beyond both of two
 /// poses, as a corrected pose against its reference and target (2: an edge twice as long as in

@@ -97,6 +97,24 @@ TEST(FaceAreas, RejectBadIndex) {
   faces(3, 0) = 4;
   EXPECT_THROW(face_areas(corner_tetrahedron(), faces), ArgumentError);
   EXPECT_THROW(face_normals(corner_tetrahedron(), faces), ArgumentError);
+  EXPECT_THROW(vertex_normals(corner_tetrahedron(), faces), ArgumentError);
+}
+
+// At the corner on the axes the three faces there have equal areas, so its normal points along
+// -(1, 1, 1); a vertex no face uses gets a zero row.
+TEST(VertexNormals, AreTheAreaWeightedFaceNormals) {
+  Eigen::MatrixX3d vertices(5, 3);
+  vertices.topRows(4) = corner_tetrahedron();
+  vertices.row(4) << 5.0, 5.0, 5.0;
+  const Eigen::MatrixX3d normals = vertex_normals(vertices, outward_tetrahedron_faces());
+  EXPECT_TRUE(normals.row(0).isApprox(-Eigen::RowVector3d::Ones() / std::sqrt(3.0), 1e-12));
+  for (Eigen::Index v = 0; v < 4; ++v) EXPECT_NEAR(normals.row(v).norm(), 1.0, 1e-12);
+  // The corner at (1, 0, 0): the hypotenuse face's normal weighs in with its larger area.
+  const Eigen::RowVector3d expected =
+      (0.5 * Eigen::RowVector3d(0, -1, 0) + 0.5 * Eigen::RowVector3d(0, 0, -1) +
+       std::sqrt(3.0) / 2.0 * Eigen::RowVector3d::Ones() / std::sqrt(3.0)).normalized();
+  EXPECT_TRUE(normals.row(1).isApprox(expected, 1e-12));
+  EXPECT_TRUE(normals.row(4).isZero(0.0));
 }
 
 }  // namespace
