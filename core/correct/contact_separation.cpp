@@ -200,13 +200,14 @@ SeparationResult separate_contacts(const Eigen::MatrixX3d& target, const Eigen::
   for (int round = 0; round < kRounds && !current.empty(); ++round) {
     out.iterations = round + 1;
     relax_folded_regions(pose, reference, faces, reference_intersecting, fold_limits);
-    current = new_faces(pose);
+    const std::vector<std::pair<int, int>> pairs = self_intersecting_face_pairs(pose, faces);
+    current = new_intersecting_faces(faces_in_pairs(pairs), reference_intersecting);
     keep_if_better();
     if (current.empty()) break;
 
     std::vector<char> pushed;
-    const Eigen::MatrixX3d push = contact_pushes(pose, faces, current, self_intersecting_face_pairs(pose, faces),
-                                                 neighbours, faces_of_vertex, kClearance * mean_edge, pushed);
+    const Eigen::MatrixX3d push = contact_pushes(pose, faces, current, pairs, neighbours, faces_of_vertex,
+                                                 kClearance * mean_edge, pushed);
     std::vector<char> following = within_rings(pushed, neighbours, kFollowingRings);
     for (size_t v = 0; v < following.size(); ++v) {
       if (pushed[v] != 0) following[v] = 0;

@@ -179,15 +179,19 @@ std::vector<FacePair> self_intersecting_face_pairs(const Eigen::MatrixX3d& verti
   return result;
 }
 
-std::vector<int> self_intersecting_faces(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces) {
+std::vector<int> faces_in_pairs(const std::vector<std::pair<int, int>>& pairs) {
   std::vector<int> result;
-  for (const auto& [f, g] : self_intersecting_face_pairs(vertices, faces)) {
+  for (const auto& [f, g] : pairs) {
     result.push_back(f);
     result.push_back(g);
   }
   std::sort(result.begin(), result.end());
   result.erase(std::unique(result.begin(), result.end()), result.end());
   return result;
+}
+
+std::vector<int> self_intersecting_faces(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces) {
+  return faces_in_pairs(self_intersecting_face_pairs(vertices, faces));
 }
 
 std::vector<int> new_intersecting_faces(const std::vector<int>& mesh_faces, const std::vector<int>& reference_faces) {

@@ -26,6 +26,9 @@ namespace posekit {
 std::vector<std::pair<int, int>> self_intersecting_face_pairs(const Eigen::MatrixX3d& vertices,
                                                               const Eigen::MatrixX3i& faces);
 
+/// Sorted, distinct faces named in `pairs` (as from self_intersecting_face_pairs()).
+std::vector<int> faces_in_pairs(const std::vector<std::pair<int, int>>& pairs);
+
 /// Sorted indices of the faces that intersect some other face (or are degenerate), i.e. the distinct
 /// faces of self_intersecting_face_pairs(). `vertices` #V by 3, `faces` #F by 3.
 std::vector<int> self_intersecting_faces(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces);

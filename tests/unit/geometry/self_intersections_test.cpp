@@ -158,5 +158,10 @@ TEST(NewIntersectingFaces, IsTheSetDifference) {
   EXPECT_EQ(new_intersecting_faces({4, 2}, {}), (Faces{2, 4}));
 }
 
+TEST(FacesInPairs, AreTheDistinctFacesOfThePairs) {
+  EXPECT_EQ(faces_in_pairs({{3, 7}, {1, 3}, {5, 5}}), (Faces{1, 3, 5, 7}));
+  EXPECT_EQ(faces_in_pairs({}), Faces{});
+}
+
 }  // namespace
 }  // namespace posekit
