@@ -23,8 +23,10 @@ detail::BackendFactory backend_factory();
 
 namespace detail {
 namespace {
+// A backend left out of the build reaches no GPU, so "auto" does not ask it for one.
 [[maybe_unused]] BackendFactory not_built(const std::string& name, const std::string& reason) {
-  return BackendFactory{name, [name, reason] { return not_built_status(name, reason); }, nullptr};
+  return BackendFactory{name, [name, reason] { return not_built_status(name, reason); }, nullptr,
+                        [] { return false; }};
 }
 }  // namespace
 

@@ -121,7 +121,8 @@ BackendStatus probe() {
 }  // namespace
 
 detail::BackendFactory backend_factory() {
-  return detail::BackendFactory{"cpu", probe, [] { return posekit::make_cpu_device(0); }};
+  // No presence check: "auto" knows the cpu backend by its name and tries it after real GPUs.
+  return detail::BackendFactory{"cpu", probe, [] { return posekit::make_cpu_device(0); }, nullptr};
 }
 
 std::unique_ptr<Device> make_cpu_device(int threads, KernelIsa isa) {

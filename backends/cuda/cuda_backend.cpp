@@ -1,5 +1,6 @@
 // Registry entry of the CUDA backend: available when discovery finds a GPU this build has kernels
-// for, which is then described without creating a context; create() checks the kernels.
+// for, which is then described without creating a context; create() checks the kernels. "auto"
+// probes it only where an NVIDIA device node says a GPU could answer.
 #include "cuda_device.hpp"
 #include "cuda_discovery.hpp"
 
@@ -21,6 +22,7 @@ detail::BackendFactory backend_factory() {
     return status;
   };
   factory.create = [] { return make_cuda_device(); };
+  factory.may_have_gpu = detail::nvidia_gpu_may_be_present;
   return factory;
 }
 

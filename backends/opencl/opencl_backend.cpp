@@ -1,5 +1,6 @@
 // Registry entry of the OpenCL backend: available when discovery finds a device with fp64, which is
-// then described without building anything; create() builds the program.
+// then described without building anything; create() builds the program. "auto" probes it only
+// where a GPU device node is present: PoCL alone is no reason to start the platforms.
 #include "opencl_device.hpp"
 #include "opencl_discovery.hpp"
 
@@ -21,6 +22,7 @@ detail::BackendFactory backend_factory() {
     return status;
   };
   factory.create = [] { return make_opencl_device(); };
+  factory.may_have_gpu = detail::gpu_may_be_present;
   return factory;
 }
 

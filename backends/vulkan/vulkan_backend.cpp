@@ -1,6 +1,7 @@
 // Registry entry of the Vulkan backend: available when a physical device with shaderFloat64 (and
 // the few other things the shaders need) is found; with POSEKIT_VULKAN_VALIDATION set, also only
 // when the validation layer is installed, so that validated runs never go silently unvalidated.
+// "auto" probes it only where a GPU device node is present: lavapipe alone is no reason to start it.
 #include "device/backend_factory.hpp"
 #include "vulkan_device.hpp"
 #include "vulkan_discovery.hpp"
@@ -30,6 +31,7 @@ detail::BackendFactory backend_factory() {
   factory.create = []() -> std::unique_ptr<Device> {
     return std::make_unique<VulkanDevice>(validation_requested());
   };
+  factory.may_have_gpu = detail::gpu_may_be_present;
   return factory;
 }
 

@@ -5,9 +5,15 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <exception>
+#include <optional>
 #include <sstream>
-#include <utility>
+
+#ifdef __linux__
+#include <dirent.h>
+#include <unistd.h>
+#endif
 
 namespace posekit {
 namespace {
@@ -39,13 +45,108 @@ BackendStatus probe(const detail::BackendFactory& factory, const std::vector<std
   }
 }
 
-// "auto" prefers a real GPU, then the CPU backend, then GPU APIs emulated on the CPU.
-int auto_rank(const BackendStatus& status) {
-  if (status.name == "cpu") return 1;
-  return status.info.emulated_on_cpu ? 2 : 0;
+bool is_cpu_backend(const detail::BackendFactory& factory) { return factory.name == "cpu"; }
+
+// A factory without a presence check is probed as before, whatever that costs.
+bool may_have_gpu(const detail::BackendFactory& factory) {
+  return !factory.may_have_gpu || factory.may_have_gpu();
 }
 
+// "auto" prefers a real GPU, then the CPU backend, then GPU APIs emulated on the CPU (PoCL,
+// lavapipe), each in registration order. Probing a GPU API starts it (a CUDA runtime, a Vulkan
+// instance, OpenCL's platforms), which costs a tenth of a second or more on a machine without a
+// GPU; so GPU APIs are probed only where their presence check allows a GPU, the first real GPU that
+// starts ends the search, and the emulations are probed only once the CPU backend has failed.
+std::unique_ptr<Device> create_auto_device(const std::vector<detail::BackendFactory>& factories) {
+  const std::vector<std::string> disabled = disabled_backends();
+  std::vector<std::optional<BackendStatus>> statuses(factories.size());
+  std::vector<bool> attempted(factories.size(), false);
+  bool any_available = false;
+  std::string failures;
+
+  const auto is_available = [&](std::size_t index) {
+    if (!statuses[index]) statuses[index] = probe(factories[index], disabled);
+    return statuses[index]->state == BackendState::available;
+  };
+  // A device that probes well can still fail to start (a driver out of memory, a lost GPU): then
+  // nullptr, and the next best one is tried.
+  const auto try_create = [&](std::size_t index) -> std::unique_ptr<Device> {
+    attempted[index] = true;
+    any_available = true;
+    try {
+      return factories[index].create();
+    } catch (const Error& error) {
+      failures += (failures.empty() ? "" : "; ") + factories[index].name + ": " + error.what();
+      return nullptr;
+    }
+  };
+
+  // Real GPUs; an emulation found on the way keeps its status for the last round.
+  for (std::size_t index = 0; index < factories.size(); ++index) {
+    if (is_cpu_backend(factories[index]) || !may_have_gpu(factories[index])) continue;
+    if (!is_available(index) || statuses[index]->info.emulated_on_cpu) continue;
+    if (std::unique_ptr<Device> device = try_create(index)) return device;
+  }
+  for (std::size_t index = 0; index < factories.size(); ++index) {
+    if (!is_cpu_backend(factories[index]) || !is_available(index)) continue;
+    if (std::unique_ptr<Device> device = try_create(index)) return device;
+  }
+  // Emulations, and GPU APIs whose presence check said no, in case it was wrong.
+  for (std::size_t index = 0; index < factories.size(); ++index) {
+    if (is_cpu_backend(factories[index]) || attempted[index] || !is_available(index)) continue;
+    if (std::unique_ptr<Device> device = try_create(index)) return device;
+  }
+  if (!any_available) throw Error("no compute device is available (see 'posekit devices')");
+  throw Error("no compute device could be created (" + failures + ")");
+}
+
+#ifdef __linux__
+bool path_exists(const char* path) { return access(path, F_OK) == 0; }
+
+// Whether the directory exists and has an entry (other than . and ..) whose name starts with the prefix.
+bool directory_has_entry(const char* directory, const char* name_prefix = "") {
+  DIR* listing = opendir(directory);
+  if (listing == nullptr) return false;
+  bool found = false;
+  const std::size_t prefix_length = std::strlen(name_prefix);
+  while (const dirent* entry = readdir(listing)) {
+    if (entry->d_name[0] != '.' && std::strncmp(entry->d_name, name_prefix, prefix_length) == 0) {
+      found = true;
+      break;
+    }
+  }
+  closedir(listing);
+  return found;
+}
+#endif
+
 }  // namespace
+
+namespace detail {
+
+bool nvidia_gpu_may_be_present() noexcept {
+#ifdef __linux__
+  // /proc/driver/nvidia/gpus lists the GPUs the kernel module found even before anything has
+  // created their device nodes (nvidia-modprobe does that on CUDA's first use).
+  return path_exists("/dev/nvidiactl") || path_exists("/dev/nvidia0") || path_exists("/dev/dxg") ||
+         directory_has_entry("/proc/driver/nvidia/gpus");
+#else
+  return true;
+#endif
+}
+
+bool gpu_may_be_present() noexcept {
+#ifdef __linux__
+  // Render nodes, not /dev/dri/card*: a display-only driver (a virtual machine's framebuffer) has a
+  // card node but nothing to compute on.
+  return nvidia_gpu_may_be_present() || directory_has_entry("/dev/dri", "renderD") ||
+         path_exists("/dev/kfd") || path_exists("/dev/mali0") || path_exists("/dev/kgsl-3d0");
+#else
+  return true;
+#endif
+}
+
+}  // namespace detail
 
 std::vector<std::string> parse_backend_list(const std::string& comma_separated) {
   std::vector<std::string> names;
@@ -92,28 +193,8 @@ std::unique_ptr<Device> create_device(const std::string& name) {
 }
 
 std::unique_ptr<Device> detail::create_device(const std::vector<BackendFactory>& factories, const std::string& name) {
+  if (name == "auto") return create_auto_device(factories);
   const std::vector<std::string> disabled = disabled_backends();
-  if (name == "auto") {
-    std::vector<std::pair<int, const detail::BackendFactory*>> candidates;
-    for (const detail::BackendFactory& factory : factories) {
-      const BackendStatus status = probe(factory, disabled);
-      if (status.state == BackendState::available) candidates.emplace_back(auto_rank(status), &factory);
-    }
-    if (candidates.empty()) throw Error("no compute device is available (see 'posekit devices')");
-    std::stable_sort(candidates.begin(), candidates.end(),
-                     [](const auto& a, const auto& b) { return a.first < b.first; });
-    // A device that probes well can still fail to start (a driver out of memory, a lost GPU): then
-    // the next best one is used.
-    std::string failures;
-    for (const auto& [rank, factory] : candidates) {
-      try {
-        return factory->create();
-      } catch (const Error& error) {
-        failures += (failures.empty() ? "" : "; ") + factory->name + ": " + error.what();
-      }
-    }
-    throw Error("no compute device could be created (" + failures + ")");
-  }
   for (const detail::BackendFactory& factory : factories) {
     if (factory.name != name) continue;
     const BackendStatus status = probe(factory, disabled);

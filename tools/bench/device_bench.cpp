@@ -5,6 +5,7 @@
 //  - BM_Backend<Operation>/<backend>: the same work on every backend the registry lists as
 //    available here (registered at start-up), so that one run gives the ratios between backends.
 //    Each backend's device is created once, before timing (GPU backends build their programs then).
+//  - BM_CreateAutoDevice, BM_CreateCpuDevice: the registry's choice of a device and its creation.
 //
 // Counters: evaluations/s = points x centers per second of wall time (the kernel phi evaluations);
 // for RK45 the field evaluations per particle and how far the particles moved. The backends' RBF
@@ -183,6 +184,33 @@ BENCHMARK(BM_Rk45Batch)
     ->Args({5000, 2700})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+
+// ---------------------------------------------------------------------------------------------
+// Choosing a device
+
+// What `posekit correct` pays before its first kernel: the registry's choice for "auto" and the
+// device's construction and destruction. The process has already probed every backend while
+// registering the BM_Backend* benchmarks, so drivers' libraries are loaded: this is the warm cost,
+// which a fresh process exceeds by the libraries' first initialization.
+void BM_CreateAutoDevice(benchmark::State& state) {
+  std::string chosen;
+  for (auto _ : state) {
+    const std::unique_ptr<Device> device = create_device("auto");
+    benchmark::DoNotOptimize(device.get());
+    if (chosen.empty()) chosen = device->info().backend;
+  }
+  state.SetLabel(chosen);
+}
+BENCHMARK(BM_CreateAutoDevice)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The same for the named cpu backend: the floor that "auto" can reach on a machine without a GPU.
+void BM_CreateCpuDevice(benchmark::State& state) {
+  for (auto _ : state) {
+    const std::unique_ptr<Device> device = create_device("cpu");
+    benchmark::DoNotOptimize(device.get());
+  }
+}
+BENCHMARK(BM_CreateCpuDevice)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // ---------------------------------------------------------------------------------------------
 // Every available backend
