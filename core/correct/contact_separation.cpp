@@ -1,13 +1,13 @@
 #include "correct/contact_separation.hpp"
 
 #include "correct/region_relaxation.hpp"
-#include "correct/vertex_regions.hpp"
+#include "correct/repair_stage.hpp"
+#include "geometry/vertex_regions.hpp"
 
-#include <posekit/edge_space.hpp>
-#include <posekit/error.hpp>
+#include <posekit/as_rigid_as_possible.hpp>
 #include <posekit/geometry.hpp>
-#include <posekit/self_intersections.hpp>
 #include <posekit/topology.hpp>
+#include <posekit/winding_numbers.hpp>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <Eigen/Geometry>
@@ -45,21 +45,6 @@ constexpr int kFollowingRings = 2;
 // towards the reference straightened cat-07's curled tail by half the diagonal).
 constexpr int kFoldMargin = 6;
 constexpr double kLargestFoldMove = 24.0;  // mean edge lengths
-
-double solid_angle(const Eigen::RowVector3d& point, const Eigen::RowVector3d& a, const Eigen::RowVector3d& b,
-                   const Eigen::RowVector3d& c) {
-  const Eigen::Vector3d u = (a - point).transpose();
-  const Eigen::Vector3d v = (b - point).transpose();
-  const Eigen::Vector3d w = (c - point).transpose();
-  const double lu = u.norm();
-  const double lv = v.norm();
-  const double lw = w.norm();
-  // A corner of the triangle itself: the triangle is seen edge on.
-  if (lu == 0.0 || lv == 0.0 || lw == 0.0) return 0.0;
-  const double numerator = u.dot(v.cross(w));
-  const double denominator = lu * lv * lw + u.dot(v) * lw + v.dot(w) * lu + w.dot(u) * lv;
-  return 2.0 * std::atan2(numerator, denominator);
-}
 
 Kernel::Point_3 point_of(const Eigen::MatrixX3d& vertices, int row) {
   return {vertices(row, 0), vertices(row, 1), vertices(row, 2)};
@@ -157,70 +142,72 @@ Eigen::MatrixX3d contact_pushes(const Eigen::MatrixX3d& pose, const Eigen::Matri
   return push;
 }
 
+class ContactSeparationStage final : public RepairStage {
+ public:
+  ContactSeparationStage()
+      : RepairStage({"contact-separation",
+                     "separate the target's own contacts where the correction strays from the target or faces remain"},
+                    scope_bit(CorrectionScope::whole_pose)) {}
+
+  bool enabled(const CorrectionOptions& options) const override {
+    return RepairStage::enabled(options) && options.reproduction_rings >= 0;
+  }
+
+  bool wanted(const Candidate& current, const CorrectionContext& context) const override {
+    return current.new_face_count() > 0 ||
+           median_distance(current.pose(), context.target) > context.options.separation_tolerance * context.diagonal;
+  }
+
+  std::optional<Candidate> run(const Candidate& /*current*/, CorrectionContext& context, StageReport& report) override {
+    SeparationOutcome outcome = separate_contacts(context);
+    report.details = {{"rounds", outcome.rounds}, {"new_faces", outcome.best.new_face_count()}};
+    report.regions = 1;
+    report.vertices = static_cast<int>(differing_vertices(outcome.best.pose(), context.target).size());
+    report.note = "the target with its own contacts separated (" + std::to_string(outcome.rounds) +
+                  " rounds), nearer the target than the correction";
+    return std::move(outcome.best);
+  }
+};
+
 }  // namespace
 
-Eigen::VectorXd winding_numbers(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces,
-                                const Eigen::MatrixX3d& points) {
-  Eigen::VectorXd winding(points.rows());
-  tbb::parallel_for(Eigen::Index{0}, points.rows(), [&](Eigen::Index p) {
-    double sum = 0.0;
-    for (Eigen::Index f = 0; f < faces.rows(); ++f) {
-      sum += solid_angle(points.row(p), vertices.row(faces(f, 0)), vertices.row(faces(f, 1)), vertices.row(faces(f, 2)));
-    }
-    winding(p) = sum / (4.0 * M_PI);
-  });
-  return winding;
-}
-
-SeparationResult separate_contacts(const Eigen::MatrixX3d& target, const Eigen::MatrixX3d& reference,
-                                   const Eigen::MatrixX3i& faces, const std::vector<int>& reference_intersecting) {
-  if (target.rows() != reference.rows()) throw ArgumentError("contact separation of poses of different sizes");
-  const int vertex_count = static_cast<int>(target.rows());
-  const AdjacencyLists neighbours = vertex_neighbours(faces, vertex_count);
-  const AdjacencyLists faces_of_vertex = vertex_faces(faces, vertex_count);
+SeparationOutcome separate_contacts(const CorrectionContext& context) {
+  const Eigen::MatrixX3d& target = context.target;
+  const Eigen::MatrixX3i& faces = context.faces;
+  const AdjacencyLists& neighbours = context.neighbours;
+  const AdjacencyLists faces_of_vertex = vertex_faces(faces, context.vertex_count());
   const double mean_edge = edge_lengths(target, edge_map(faces).edges).mean();
-  const auto new_faces = [&](const Eigen::MatrixX3d& pose) {
-    return new_intersecting_faces(self_intersecting_faces(pose, faces), reference_intersecting);
-  };
   RelaxationLimits fold_limits;
   fold_limits.widest_margin = kFoldMargin;
   fold_limits.largest_move = kLargestFoldMove * mean_edge;
 
-  SeparationResult out;
-  out.pose = target;
-  std::vector<int> best = new_faces(target);
-  out.new_faces_before = static_cast<int>(best.size());
-  Eigen::MatrixX3d pose = target;
-  std::vector<int> current = best;
-  const auto keep_if_better = [&]() {
-    if (current.size() >= best.size()) return;
-    best = current;
-    out.pose = pose;
+  Candidate pose(target, faces, context.reference_intersecting, context.target_pairs);
+  SeparationOutcome out{pose, 0, pose.new_face_count()};
+  const auto keep_if_better = [&] {
+    if (pose.new_face_count() < out.best.new_face_count()) out.best = pose;
   };
-  for (int round = 0; round < kRounds && !current.empty(); ++round) {
-    out.iterations = round + 1;
-    relax_folded_regions(pose, reference, faces, reference_intersecting, fold_limits);
-    const std::vector<std::pair<int, int>> pairs = self_intersecting_face_pairs(pose, faces);
-    current = new_intersecting_faces(faces_in_pairs(pairs), reference_intersecting);
+  for (int round = 0; round < kRounds && pose.new_face_count() > 0; ++round) {
+    out.rounds = round + 1;
+    relax_folded_regions(pose, context, fold_limits);
     keep_if_better();
-    if (current.empty()) break;
+    if (pose.new_face_count() == 0) break;
 
     std::vector<char> pushed;
-    const Eigen::MatrixX3d push = contact_pushes(pose, faces, current, pairs, neighbours, faces_of_vertex,
-                                                 kClearance * mean_edge, pushed);
+    const Eigen::MatrixX3d push = contact_pushes(pose.pose(), faces, pose.new_faces(), pose.pairs(), neighbours,
+                                                 faces_of_vertex, kClearance * mean_edge, pushed);
     std::vector<char> following = within_rings(pushed, neighbours, kFollowingRings);
     for (size_t v = 0; v < following.size(); ++v) {
       if (pushed[v] != 0) following[v] = 0;
     }
     std::optional<Eigen::MatrixX3d> moved =
-        as_rigid_as_possible(target, pose, faces, following, pushed, pose + push, neighbours);
+        as_rigid_as_possible(target, pose.pose(), faces, following, pushed, pose.pose() + push, neighbours);
     if (!moved) break;
-    pose = std::move(*moved);
-    current = new_faces(pose);
+    pose.move_to(*moved);
     keep_if_better();
   }
-  out.new_faces_after = static_cast<int>(best.size());
   return out;
 }
+
+std::unique_ptr<RepairStage> make_contact_separation_stage() { return std::make_unique<ContactSeparationStage>(); }
 
 }  // namespace posekit::detail

@@ -1,8 +1,8 @@
 #include "correct/intersection_fallback.hpp"
 
-#include "correct/vertex_regions.hpp"
+#include "correct/repair_stage.hpp"
+#include "geometry/vertex_regions.hpp"
 
-#include <posekit/self_intersections.hpp>
 #include <posekit/topology.hpp>
 
 #include <Eigen/Sparse>
@@ -18,6 +18,9 @@ using Flags = std::vector<char>;
 
 // Rounds of region growing; a replacement can uncover a residue next to it, hence more than one.
 constexpr int kPasses = 3;
+// A region whose integrated position strays this far (relative to the reference's diagonal) from
+// the target counts as one the field could not reach.
+constexpr double kFallbackDeviation = 1e-2;
 // A part dragged along by an obstacle is followed only up to this fraction of the vertices: beyond
 // it the region is no longer a part but the pose, and the target is what was to be corrected.
 constexpr double kLargestDraggedFraction = 0.1;
@@ -43,30 +46,6 @@ void grow_through_deviation(Flags& flags, const AdjacencyLists& neighbours, cons
       stack.push_back(w);
     }
   }
-}
-
-// Connected regions of the flagged vertices (edges between flagged vertices only).
-std::vector<Flags> flagged_regions(const Flags& flagged, const AdjacencyLists& neighbours) {
-  Flags seen(flagged.size(), 0);
-  std::vector<Flags> regions;
-  for (int seed = 0; seed < static_cast<int>(flagged.size()); ++seed) {
-    if (!is_set(flagged, seed) || is_set(seen, seed)) continue;
-    Flags region(flagged.size(), 0);
-    std::vector<int> stack{seed};
-    seen[static_cast<size_t>(seed)] = region[static_cast<size_t>(seed)] = 1;
-    while (!stack.empty()) {
-      const int v = stack.back();
-      stack.pop_back();
-      for (int w : neighbours[v]) {
-        if (is_set(flagged, w) && !is_set(seen, w)) {
-          seen[static_cast<size_t>(w)] = region[static_cast<size_t>(w)] = 1;
-          stack.push_back(w);
-        }
-      }
-    }
-    regions.push_back(std::move(region));
-  }
-  return regions;
 }
 
 int count(const Flags& flags) { return static_cast<int>(std::count(flags.begin(), flags.end(), 1)); }
@@ -120,81 +99,87 @@ Eigen::MatrixX3d replaced(const Eigen::MatrixX3d& result, const Eigen::MatrixX3d
   return candidate;
 }
 
+class FallbackStage final : public RepairStage {
+ public:
+  FallbackStage()
+      : RepairStage({"fallback", "give regions the field cannot free the target's shape, or smooth small folds"},
+                    kEveryScope) {}
+
+  bool wanted(const Candidate& current, const CorrectionContext& context) const override {
+    return current.new_face_count() > 0 && context.field.has_value();
+  }
+
+  std::optional<Candidate> run(const Candidate& current, CorrectionContext& context, StageReport& report) override {
+    Candidate restored = current;
+    const FallbackOutcome outcome = restore_target_regions(restored, context, context.field->classification.in_transit,
+                                                           kFallbackDeviation * context.diagonal);
+    report.regions = outcome.sweep.regions;
+    report.vertices = outcome.sweep.vertices;
+    report.details = {{"global_regions", outcome.global_regions}, {"smoothed_regions", outcome.smoothed_regions}};
+    if (outcome.sweep.regions == 0) return std::nullopt;
+    report.note = std::to_string(outcome.sweep.regions - outcome.smoothed_regions) + " region(s) taken from the target, " +
+                  std::to_string(outcome.global_regions) + " of them where the tested poses pass a part through another; " +
+                  std::to_string(outcome.smoothed_regions) + " small region(s) smoothed (" +
+                  std::to_string(outcome.sweep.vertices) + " vertices in all)";
+    return restored;
+  }
+};
+
 }  // namespace
 
-FallbackResult restore_target_regions(Eigen::MatrixX3d& result, const Eigen::MatrixX3d& target,
-                                      const std::vector<int>& reference_intersecting, const Eigen::MatrixX3i& faces,
-                                      const std::vector<char>& in_transit, double deviation_threshold) {
-  FallbackResult outcome;
-  const Eigen::Index vertex_count = result.rows();
-  const AdjacencyLists neighbours = vertex_neighbours(faces, static_cast<int>(vertex_count));
-  const auto new_faces = [&](const Eigen::MatrixX3d& pose) {
-    return new_intersecting_faces(self_intersecting_faces(pose, faces), reference_intersecting);
-  };
-  std::vector<int> current = new_faces(result);
-  outcome.new_faces_before = static_cast<int>(current.size());
-
-  for (int pass = 0; pass < kPasses && !current.empty(); ++pass) {
-    const Flags seeds = within_rings(face_vertices(current, faces, static_cast<size_t>(vertex_count)), neighbours, 1);
-    for (const Flags& component : flagged_regions(seeds, neighbours)) {
-      // An earlier replacement in this pass may have settled this one already.
-      if (!overlaps(component, face_vertices(current, faces, static_cast<size_t>(vertex_count)))) continue;
-      // Smallest first: a few rings for a local residue, then the part dragged along.
-      std::vector<Flags> regions{component};
-      regions.push_back(component);
-      regions.back() = within_rings(regions.back(), neighbours, 2);
-      if (overlaps(component, in_transit)) {
-        Flags dragged = component;
-        grow_through_deviation(dragged, neighbours, result, target, deviation_threshold);
-        dragged = within_rings(dragged, neighbours, 1);
-        if (count(dragged) <= kLargestDraggedFraction * static_cast<double>(vertex_count)) {
-          regions.push_back(std::move(dragged));
-        }
-      }
-
-      // Where the target is itself folded or intersecting (inside a corrected region), only a
-      // smooth membrane over the small region can undo a fold: its own surroundings, no target.
-      const std::size_t target_shaped = regions.size();
-      if (count(component) <= kLargestSmoothedRegion) {
-        regions.push_back(component);
-        regions.push_back(component);
-        regions.back() = within_rings(regions.back(), neighbours, 1);
-        if (count(regions.back()) > kLargestSmoothedRegion) regions.pop_back();
-      }
-      const Eigen::MatrixX3d no_shape = Eigen::MatrixX3d::Zero(result.rows(), 3);
-
-      std::vector<int> best_faces = current;
-      Eigen::MatrixX3d best;
-      Flags best_changed;
-      bool best_smoothed = false;
-      for (std::size_t k = 0; k < regions.size(); ++k) {
-        const Flags& region = regions[k];
-        const bool smoothed = k >= target_shaped;
-        if (smoothed && !best_changed.empty()) break;  // the target's shape already helped
-        Eigen::MatrixX3d candidate = replaced(result, smoothed ? no_shape : target, region, neighbours);
-        std::vector<int> fresh = new_faces(candidate);
-        if (fresh.size() >= best_faces.size()) continue;
-        best_faces = std::move(fresh);
-        best = std::move(candidate);
-        best_changed = region;
-        best_smoothed = smoothed;
-        // Nothing left in or at the replaced region: a larger one would only lose more of the result.
-        Flags around = region;
-        around = within_rings(around, neighbours, 1);
-        if (!overlaps(around, face_vertices(best_faces, faces, static_cast<size_t>(vertex_count)))) break;
-      }
-      if (best_changed.empty()) {
-        ++outcome.rejected_regions;
-        continue;
-      }
-      result = std::move(best);
-      current = std::move(best_faces);
-      ++(best_smoothed ? outcome.smoothed_regions : outcome.regions);
-      outcome.vertices += count(best_changed);
-      if (overlaps(best_changed, in_transit)) ++outcome.global_regions;
+FallbackOutcome restore_target_regions(Candidate& candidate, const CorrectionContext& context,
+                                       const std::vector<char>& in_transit, double deviation_threshold) {
+  const Eigen::MatrixX3d& target = context.target;
+  const AdjacencyLists& neighbours = context.neighbours;
+  const auto vertex_count = static_cast<double>(context.vertex_count());
+  FallbackOutcome outcome;
+  RegionSweep sweep;
+  sweep.seed_rings = {1};
+  sweep.rounds = kPasses;
+  const auto restore = [&](const std::vector<int>& members, const Candidate& current) -> std::optional<Probe> {
+    const Eigen::MatrixX3d& result = current.pose();
+    Flags component(static_cast<size_t>(context.vertex_count()), 0);
+    for (int v : members) component[static_cast<size_t>(v)] = 1;
+    // Smallest first: a few rings for a local residue, then the part dragged along.
+    std::vector<Flags> regions{component, within_rings(component, neighbours, 2)};
+    if (overlaps(component, in_transit)) {
+      Flags dragged = component;
+      grow_through_deviation(dragged, neighbours, result, target, deviation_threshold);
+      dragged = within_rings(dragged, neighbours, 1);
+      if (count(dragged) <= kLargestDraggedFraction * vertex_count) regions.push_back(std::move(dragged));
     }
-  }
+    // Where the target is itself folded or intersecting (inside a corrected region), only a
+    // smooth membrane over the small region can undo a fold: its own surroundings, no target.
+    const std::size_t target_shaped = regions.size();
+    if (count(component) <= kLargestSmoothedRegion) {
+      regions.push_back(component);
+      regions.push_back(within_rings(component, neighbours, 1));
+      if (count(regions.back()) > kLargestSmoothedRegion) regions.pop_back();
+    }
+    const Eigen::MatrixX3d no_shape = Eigen::MatrixX3d::Zero(result.rows(), 3);
+
+    std::optional<Probe> best;
+    std::size_t best_region = 0;
+    for (std::size_t k = 0; k < regions.size(); ++k) {
+      const bool smoothed = k >= target_shaped;
+      if (smoothed && best) break;  // the target's shape already helped
+      Probe probe = current.probe(replaced(result, smoothed ? no_shape : target, regions[k], neighbours));
+      const size_t fewest = best ? best->new_faces.size() : current.new_faces().size();
+      if (probe.new_faces.size() >= fewest) continue;
+      best = std::move(probe);
+      best_region = k;
+      // Nothing left in or at the replaced region: a larger one would only lose more of the result.
+      if (!touches(within_rings(regions[k], neighbours, 1), best->new_faces, context.faces)) break;
+    }
+    if (!best) return std::nullopt;
+    if (best_region >= target_shaped) ++outcome.smoothed_regions;
+    if (overlaps(regions[best_region], in_transit)) ++outcome.global_regions;
+    return best;
+  };
+  outcome.sweep = sweep_regions(candidate, context, sweep, restore);
   return outcome;
 }
+
+std::unique_ptr<RepairStage> make_fallback_stage() { return std::make_unique<FallbackStage>(); }
 
 }  // namespace posekit::detail

@@ -1,9 +1,12 @@
 #include "correct/target_reproduction.hpp"
 
-#include "correct/vertex_regions.hpp"
+#include "correct/repair_stage.hpp"
+#include "geometry/vertex_regions.hpp"
 
 #include <posekit/error.hpp>
 #include <posekit/self_intersections.hpp>
+
+#include <iterator>
 
 #include <algorithm>
 #include <utility>
@@ -66,5 +69,59 @@ Reproduction reproduce_target(const Eigen::MatrixX3d& result, const Eigen::Matri
   }
   return {};
 }
+
+namespace {
+
+// The final reproduction starts from the target's intersecting faces alone, so it widens one ring
+// at a time around what it would add, for longer (the shared cat and lion poses needed two to ten
+// rounds).
+constexpr int kFinalReproductionAttempts = 12;
+
+// After the repairs, which keep or move whole regions, only the target's own new intersections
+// and what is still new need the candidate's positions; the rest of the pose can be the target
+// again wherever that adds no intersection.
+class FinalReproductionStage final : public RepairStage {
+ public:
+  FinalReproductionStage()
+      : RepairStage({"final-reproduction",
+                     "give back the target's positions away from its own intersections and what is still new"},
+                    kEveryScope) {}
+
+  bool enabled(const CorrectionOptions& options) const override {
+    return RepairStage::enabled(options) && options.reproduction_rings >= 0;
+  }
+
+  bool wanted(const Candidate& current, const CorrectionContext& context) const override {
+    return current.pose() != context.target;
+  }
+
+  std::optional<Candidate> run(const Candidate& current, CorrectionContext& context, StageReport& report) override {
+    std::vector<int> kept_faces =
+        new_intersecting_faces(faces_in_pairs(context.target_pairs), context.reference_intersecting);
+    kept_faces.insert(kept_faces.end(), current.new_faces().begin(), current.new_faces().end());
+    const std::vector<char> kept = face_vertices(kept_faces, context.faces, static_cast<size_t>(context.vertex_count()));
+    ReproductionSettings settings;
+    settings.blend_rings = context.options.blend_rings;
+    settings.widening_rings = 1;
+    settings.attempts = kFinalReproductionAttempts;
+    const FaceTest new_faces = [&](const Eigen::MatrixX3d& pose) { return current.new_faces_if(pose); };
+    Reproduction reproduction = reproduce_target(current.pose(), context.target, kept, context.faces,
+                                                 context.neighbours, settings, new_faces, current.new_faces());
+    if (!reproduction.pose) return std::nullopt;
+    const int before = static_cast<int>(differing_vertices(current.pose(), context.target).size());
+    Candidate reproduced = current;
+    reproduced.move_to(*reproduction.pose);
+    const int after = static_cast<int>(differing_vertices(reproduced.pose(), context.target).size());
+    report.regions = 1;
+    report.vertices = before - after;
+    report.details = {{"reproduced_vertices", reproduction.reproduced_vertices}};
+    report.note = std::to_string(before - after) + " more vertices given the target's positions";
+    return reproduced;
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<RepairStage> make_final_reproduction_stage() { return std::make_unique<FinalReproductionStage>(); }
 
 }  // namespace posekit::detail

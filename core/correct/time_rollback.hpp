@@ -1,24 +1,26 @@
-// The last resort for intersections that neither integration nor the target can remove: a region
-// where the result still has faces intersecting that the reference has not is moved back along its
-// own path lines, relative to the surface around it, to the latest time at which it was clean.
+// A repair for intersections that neither integration nor the target can remove: a region where
+// the candidate still has new intersecting faces is moved back along its own path lines, relative
+// to the surface around it, to the latest time at which it was clean.
 //
 // The region is a part that went too far: pressed into another part (the field stops it at the
 // obstacle, but the mesh is compressed there below its edge length), or an intersection the
 // reference already had that grew onto neighbouring faces on the way to the target. Along the
-// integrated path lines the region was clean at time 0 (the reference) and became entangled at some
-// time; taking its shape at an earlier time, placed rigidly onto where its surroundings end up, keeps
-// the rest of the correction and gives the part a little less of its motion.
+// path lines the region was clean at time 0 (the reference) and became entangled at some time;
+// taking its shape at an earlier time, placed rigidly onto where its surroundings end up, keeps the
+// rest of the correction and gives the part a little less of its motion.
 #pragma once
 
-#include <Eigen/Core>
+#include "correct/candidate.hpp"
+#include "correct/correction_context.hpp"
+#include "correct/region_sweep.hpp"
 
 #include <functional>
 #include <vector>
 
 namespace posekit::detail {
 
-/// Positions of `vertices` along their integrated path lines at times k / segments of the whole
-/// motion, k = 0 .. segments: element k is #vertices by 3, in the order given.
+/// Positions of `vertices` along their path lines at times k / segments of the whole motion,
+/// k = 0 .. segments: element k is #vertices by 3, in the order given (PathLines::sample).
 using PathSampler = std::function<std::vector<Eigen::MatrixX3d>(const std::vector<int>& vertices, int segments)>;
 
 struct RollbackOptions {
@@ -27,21 +29,18 @@ struct RollbackOptions {
   int anchor_rings = 2;  ///< rings beyond the blend that place the region's earlier shape
 };
 
-struct RollbackResult {
-  int new_faces_before = 0;  ///< new intersecting faces when the stage began
-  int new_faces_after = 0;   ///< and when it ended
-  int regions = 0;           ///< regions moved back
-  int vertices = 0;          ///< vertices moved (blend included, each counted once)
-  double earliest_time = 1;  ///< the earliest time any region was moved back to (1: none moved)
+struct RollbackOutcome {
+  SweepOutcome sweep;
+  double earliest_time = 1;  ///< the earliest time a region was moved back to (1: none moved)
 };
 
-/// Moves regions of `result` (#V by 3) around faces that intersect and are not in
-/// `reference_intersecting` (sorted) back along the path lines given by `paths`, each to the latest
-/// of the tried times at which it no longer intersects, keeping a move only when it lowers the number
-/// of new intersecting faces. Regions grow by one, then three, then six rings around the faces in
-/// three passes; a region that would move more than a tenth of the vertices is left alone. `result` may differ from the ends of the path lines (where the target was blended or
-/// copied in): the move along the path lines is added to it.
-RollbackResult roll_back_regions(Eigen::MatrixX3d& result, const PathSampler& paths, const Eigen::MatrixX3i& faces,
-                                 const std::vector<int>& reference_intersecting, const RollbackOptions& options = {});
+/// Moves regions of `candidate` around its new faces back along `paths`, each to the latest of the
+/// tried times at which it no longer intersects, keeping a move only when it lowers the number of
+/// new faces. Regions grow by one, then three, then six rings around the faces; a region whose
+/// move would reach more than a tenth of the vertices is left alone. The candidate may differ from
+/// the ends of the path lines (where the target was blended or copied in): the move along the path
+/// lines is added to it.
+RollbackOutcome roll_back_regions(Candidate& candidate, const CorrectionContext& context, const PathSampler& paths,
+                                  const RollbackOptions& options = {});
 
 }  // namespace posekit::detail

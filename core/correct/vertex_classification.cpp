@@ -6,17 +6,19 @@
 
 namespace posekit::detail {
 
-VertexClassification classify_vertices(const std::vector<Eigen::MatrixX3d>& frames, const Eigen::MatrixX3i& faces,
-                                       int rings, const std::vector<int>& user_excluded) {
-  if (frames.size() < 2) throw ArgumentError("classification needs the reference and the target");
+VertexClassification classify_vertices(const std::vector<FacePairs>& pairs_per_pose, const Eigen::MatrixX3i& faces,
+                                       const AdjacencyLists& neighbours, int rings,
+                                       const std::vector<int>& user_excluded) {
+  if (pairs_per_pose.size() < 2) throw ArgumentError("classification needs the reference and the target");
   if (rings < 0) throw ArgumentError("exclusion rings must be >= 0, got " + std::to_string(rings));
-  const int vertex_count = static_cast<int>(frames.front().rows());
+  const int vertex_count = neighbours.item_count();
+  const std::vector<FacePairs>& frames = pairs_per_pose;
   VertexClassification result;
   std::vector<char> excluded(static_cast<size_t>(vertex_count), 0);
   std::vector<char> excluded_by_target(static_cast<size_t>(vertex_count), 0);
   result.unconstrained_in_frame.assign(frames.size(), std::vector<char>(static_cast<size_t>(vertex_count), 0));
   for (size_t frame = 0; frame < frames.size(); ++frame) {
-    const std::vector<int> intersecting = self_intersecting_faces(frames[frame], faces);
+    const std::vector<int> intersecting = faces_in_pairs(frames[frame]);
     const bool is_target = frame + 1 == frames.size();
     if (frame == 0) result.reference_intersecting = intersecting;
     if (is_target) result.target_intersecting = intersecting;
@@ -28,7 +30,6 @@ VertexClassification classify_vertices(const std::vector<Eigen::MatrixX3d>& fram
       }
     }
   }
-  const AdjacencyLists neighbours = vertex_neighbours(faces, vertex_count);
   const auto grow = [&](std::vector<char>& flags) {
     for (int ring = 0; ring < rings; ++ring) {
       std::vector<char> grown = flags;

@@ -17,6 +17,8 @@ class VertexTrajectories {
   explicit VertexTrajectories(std::vector<Eigen::MatrixX3d> frames);
 
   int vertex_count() const { return static_cast<int>(frames_.front().rows()); }
+  /// The key frames, frame i at time i / K.
+  const std::vector<Eigen::MatrixX3d>& frames() const { return frames_; }
   /// Position of `vertex` at time t in [0, 1].
   Eigen::Vector3d position(int vertex, double t) const;
   /// Positions of every vertex at time t in [0, 1] (#V by 3).

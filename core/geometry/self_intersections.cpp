@@ -1,3 +1,4 @@
+#include "geometry/face_pair_test.hpp"
 #include "geometry/vertex_checks.hpp"
 
 #include <posekit/self_intersections.hpp>
@@ -23,9 +24,8 @@ namespace {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_3;
-using Segment = Kernel::Segment_3;
-using Triangle = Kernel::Triangle_3;
 using FacePair = std::pair<int, int>;
+using detail::FacePairTest;
 
 // Bounding box of one face; its id is the face index, so boxes may be copied freely by the
 // (parallel) box intersection, and no global counter is touched (safe when several meshes are
@@ -46,66 +46,6 @@ class FaceBox {
  private:
   CGAL::Bbox_3 box_;
   int face_ = -1;
-};
-
-// Same rules as CGAL::Polygon_mesh_processing::internal::do_faces_intersect, with shared vertices
-// and edges recognized by vertex index instead of halfedge adjacency.
-class FacePairTest {
- public:
-  FacePairTest(const std::vector<Point>& points, const Eigen::MatrixX3i& faces) : points_(points), faces_(faces) {}
-
-  bool intersect(int f, int g) const {
-    const std::array<int, 3> a = corners(f);
-    const std::array<int, 3> b = corners(g);
-    int shared_count = 0;
-    int first_shared_in_a = -1;
-    int first_shared_in_b = -1;
-    std::array<bool, 3> a_shared{false, false, false};
-    std::array<bool, 3> b_shared{false, false, false};
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) {
-        if (a[i] != b[j] || a_shared[i] || b_shared[j]) continue;
-        a_shared[i] = b_shared[j] = true;
-        if (shared_count++ == 0) {
-          first_shared_in_a = i;
-          first_shared_in_b = j;
-        }
-      }
-    }
-
-    if (shared_count >= 3) return true;  // the same triangle twice
-    if (shared_count == 2) {
-      // Sharing an edge: they overlap only when folded flat onto each other, i.e. the two opposite
-      // corners are coplanar with the edge and on the same side of it.
-      const int a_apex = unshared_corner(a_shared);
-      const int b_apex = unshared_corner(b_shared);
-      const Point& p = point(a[(a_apex + 1) % 3]);
-      const Point& q = point(a[(a_apex + 2) % 3]);
-      const Point& r = point(a[a_apex]);
-      const Point& s = point(b[b_apex]);
-      return CGAL::coplanar(p, q, r, s) && CGAL::coplanar_orientation(p, q, r, s) == CGAL::POSITIVE;
-    }
-    const Triangle ta = triangle(a);
-    const Triangle tb = triangle(b);
-    if (shared_count == 1) {
-      // Sharing one vertex: any further contact shows up on an edge opposite the shared vertex.
-      const Segment a_opposite(point(a[(first_shared_in_a + 1) % 3]), point(a[(first_shared_in_a + 2) % 3]));
-      const Segment b_opposite(point(b[(first_shared_in_b + 1) % 3]), point(b[(first_shared_in_b + 2) % 3]));
-      return CGAL::do_intersect(ta, b_opposite) || CGAL::do_intersect(tb, a_opposite);
-    }
-    return CGAL::do_intersect(ta, tb);
-  }
-
- private:
-  std::array<int, 3> corners(int f) const { return {faces_(f, 0), faces_(f, 1), faces_(f, 2)}; }
-  const Point& point(int vertex) const { return points_[static_cast<size_t>(vertex)]; }
-  Triangle triangle(const std::array<int, 3>& c) const { return {point(c[0]), point(c[1]), point(c[2])}; }
-  static int unshared_corner(const std::array<bool, 3>& shared) {
-    return !shared[0] ? 0 : (!shared[1] ? 1 : 2);
-  }
-
-  const std::vector<Point>& points_;
-  const Eigen::MatrixX3i& faces_;
 };
 
 // CGAL's parallel box intersection works on four copies of the boxes in sixteen tasks; it only pays
@@ -164,7 +104,7 @@ std::vector<FacePair> self_intersecting_face_pairs(const Eigen::MatrixX3d& verti
 
   const std::vector<FacePair> candidates = candidate_pairs(boxes);
   std::vector<unsigned char> hit(candidates.size(), 0);
-  const FacePairTest test(points, faces);
+  const FacePairTest test(vertices, faces);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates.size(), 1024),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       for (std::size_t i = range.begin(); i != range.end(); ++i) {

@@ -1,6 +1,7 @@
-#include "correct/vertex_regions.hpp"
+#include "geometry/vertex_regions.hpp"
 
 #include <algorithm>
+#include <numeric>
 #include <utility>
 
 namespace posekit::detail {
@@ -81,6 +82,47 @@ std::vector<std::vector<int>> connected_sets(const std::vector<char>& flagged, c
   }
   std::stable_sort(sets.begin(), sets.end(), [](const auto& a, const auto& b) { return a.size() > b.size(); });
   return sets;
+}
+
+std::vector<std::vector<int>> join_intersecting(const std::vector<std::vector<int>>& sets, const FacePairs& pairs,
+                                                const Eigen::MatrixX3i& faces) {
+  int vertex_count = 0;
+  for (const std::vector<int>& set : sets) {
+    for (int v : set) vertex_count = std::max(vertex_count, v + 1);
+  }
+  std::vector<int> set_of(static_cast<size_t>(vertex_count), -1);
+  for (size_t k = 0; k < sets.size(); ++k) {
+    for (int v : sets[k]) set_of[static_cast<size_t>(v)] = static_cast<int>(k);
+  }
+  std::vector<int> parent(sets.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto root = [&](int k) {
+    while (parent[static_cast<size_t>(k)] != k) {
+      k = parent[static_cast<size_t>(k)] = parent[static_cast<size_t>(parent[static_cast<size_t>(k)])];
+    }
+    return k;
+  };
+  // The set of a face: that of its first corner in some set.
+  const auto set_of_face = [&](int f) {
+    for (int c = 0; c < 3; ++c) {
+      const int v = faces(f, c);
+      if (v < vertex_count && set_of[static_cast<size_t>(v)] >= 0) return set_of[static_cast<size_t>(v)];
+    }
+    return -1;
+  };
+  for (const auto& [f, g] : pairs) {
+    const int a = set_of_face(f);
+    const int b = set_of_face(g);
+    if (a >= 0 && b >= 0) parent[static_cast<size_t>(root(a))] = root(b);
+  }
+  std::vector<std::vector<int>> joined(sets.size());
+  for (size_t k = 0; k < sets.size(); ++k) {
+    std::vector<int>& into = joined[static_cast<size_t>(root(static_cast<int>(k)))];
+    into.insert(into.end(), sets[k].begin(), sets[k].end());
+  }
+  joined.erase(std::remove_if(joined.begin(), joined.end(), [](const auto& r) { return r.empty(); }), joined.end());
+  std::stable_sort(joined.begin(), joined.end(), [](const auto& a, const auto& b) { return a.size() > b.size(); });
+  return joined;
 }
 
 }  // namespace posekit::detail

@@ -1,7 +1,8 @@
-// Regions of a mesh's vertices: rings around a flagged set, and its connected parts. The stages that
-// repair what integration left behind grow such regions around intersecting faces.
+// Regions of a mesh's vertices: rings around a flagged set, its connected parts, and parts joined
+// where they intersect. Repairs grow such regions around intersecting faces.
 #pragma once
 
+#include <posekit/self_intersection_tracker.hpp>
 #include <posekit/topology.hpp>
 
 #include <Eigen/Core>
@@ -27,5 +28,11 @@ bool touches(const std::vector<char>& flagged, const std::vector<int>& face_list
 
 /// The connected sets of flagged vertices (through edges between flagged vertices), largest first.
 std::vector<std::vector<int>> connected_sets(const std::vector<char>& flagged, const AdjacencyLists& neighbours);
+
+/// `sets` (disjoint vertex sets) joined wherever a face with a corner in one intersects a face with a
+/// corner in another (`pairs` of faces of `faces`): both sides of an intersection are one problem.
+/// Largest first.
+std::vector<std::vector<int>> join_intersecting(const std::vector<std::vector<int>>& sets, const FacePairs& pairs,
+                                                const Eigen::MatrixX3i& faces);
 
 }  // namespace posekit::detail

@@ -23,14 +23,6 @@ double wrap_angle(double angle) {
   return angle - 2.0 * kPi * std::round(angle / (2.0 * kPi));
 }
 
-Eigen::VectorXd edge_lengths(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX2i& edges) {
-  Eigen::VectorXd lengths(edges.rows());
-  for (Eigen::Index e = 0; e < edges.rows(); ++e) {
-    lengths(e) = (vertices.row(edges(e, 1)) - vertices.row(edges(e, 0))).norm();
-  }
-  return lengths;
-}
-
 EdgeSpaceCoordinates edge_space_coordinates(const PoseSet& poses, const EdgeMap& edges,
                                             const AdjacencyLists& incident_faces) {
   const int pose_count = poses.pose_count();

@@ -1,4 +1,6 @@
 // The command line as users and other tools see it: exit status, one-line errors, files left behind.
+#include <posekit/correct.hpp>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -198,35 +200,60 @@ class CorrectCommand : public ::testing::Test {
 
 TEST_F(CorrectCommand, CorrectsTheDemoArmAndWritesItsReport) {
   const std::string report_file = (outputs_.path() / "report.json").string();
-  const CommandResult result = run_posekit({"correct", rest_, bent_, "-o", output_, "--report", report_file});
+  const CommandResult result =
+      run_posekit({"correct", rest_, bent_, "-o", output_, "--report", report_file, "--progress"});
   ASSERT_EQ(result.exit_status, 0) << result.err;
   std::ifstream stream(report_file);
   const nlohmann::json report = nlohmann::json::parse(stream);
-  EXPECT_GT(report.at("intersecting_faces").at("target").get<int>(), 0);
-  EXPECT_EQ(report.at("intersecting_faces").at("new_in_result"), 0);
-  EXPECT_GT(report.at("fit").at("centers").get<int>(), 0);
-  EXPECT_EQ(report.at("rk45").at("failures"), 0);
-  for (const char* stage : {"key_frames", "classification", "fitting", "integration", "verification", "local_correction",
-                            "rollback", "relaxation", "halfway", "contact_separation", "reproduction", "total"}) {
-    EXPECT_TRUE(report.at("seconds").contains(stage)) << stage;
+  const nlohmann::json& outcome = report.at("result");
+  EXPECT_GT(outcome.at("intersecting_faces").at("target").get<int>(), 0);
+  EXPECT_EQ(outcome.at("intersecting_faces").at("new"), 0);
+  EXPECT_TRUE(outcome.at("distortion").contains("stretched_faces"));
+  EXPECT_EQ(outcome.at("distance_to_target").at("median"), 0.0);
+  const nlohmann::json& field = report.at("field");
+  EXPECT_GT(field.at("centers").get<int>(), 0);
+  EXPECT_FALSE(field.at("whole_mesh").get<bool>());
+  ASSERT_EQ(field.at("regions").size(), 1u);
+  EXPECT_EQ(field.at("regions")[0].at("rk45").at("failures"), 0);
+  for (const char* step : {"key_frames", "classification", "fitting", "integration", "reproduction"}) {
+    EXPECT_TRUE(field.at("seconds").contains(step)) << step;
   }
-  // Integration left nothing for the last stages to mend on the demo arm.
-  EXPECT_EQ(report.at("local_correction").at("regions"), 0);
-  EXPECT_EQ(report.at("rollback").at("regions"), 0);
-  EXPECT_EQ(report.at("rollback").at("new_faces_before"), 0);
-  EXPECT_EQ(report.at("relaxation").at("regions"), 0);
-  EXPECT_FALSE(report.at("halfway").at("tried").get<bool>());
-  EXPECT_FALSE(report.at("halfway").at("used").get<bool>());
-  // Nor strayed from the target: the target's contacts were not separated instead.
-  EXPECT_FALSE(report.at("contact_separation").at("tried").get<bool>());
-  EXPECT_FALSE(report.at("contact_separation").at("used").get<bool>());
-  EXPECT_EQ(report.at("contact_separation").at("rounds"), 0);
-  EXPECT_FALSE(report.at("local_correction").at("from_target").get<bool>());
-  // The final reproduction gives most of the arm the target's own positions.
-  EXPECT_GT(report.at("reproduction").at("final_vertices").get<int>(), 0);
+  // One entry per stage of the ladder, in its order, and one progress line per stage that ran.
+  const nlohmann::json& stages = report.at("stages");
+  ASSERT_EQ(stages.size(), repair_stages().size());
+  for (size_t k = 0; k < stages.size(); ++k) {
+    const nlohmann::json& stage = stages[k];
+    EXPECT_EQ(stage.at("name"), repair_stages()[k].name);
+    for (const char* key : {"ran", "skipped", "kept", "new_faces_before", "new_faces_after", "regions", "vertices",
+                            "seconds", "note", "details"}) {
+      EXPECT_TRUE(stage.contains(key)) << stage.at("name") << " " << key;
+    }
+    const bool line = result.err.find("correct: " + stage.at("name").get<std::string>() + " (") != std::string::npos;
+    EXPECT_EQ(line, stage.at("ran").get<bool>()) << stage.at("name") << "\n" << result.err;
+  }
+  EXPECT_TRUE(stages[0].at("ran").get<bool>());
+  EXPECT_TRUE(report.at("seconds").is_number());
   const CommandResult check = run_posekit({"check", output_, "--reference", rest_, "--json"});
   ASSERT_EQ(check.exit_status, 0) << check.err;
   EXPECT_EQ(nlohmann::json::parse(check.out).at("new_self_intersecting_faces"), 0);
+}
+
+// --no-<stage> comes from the ladder's stage list; --whole-mesh fits every vertex.
+TEST_F(CorrectCommand, StageFlagsAndTheWholeMesh) {
+  const std::string report_file = (outputs_.path() / "report.json").string();
+  std::vector<std::string> arguments{"correct", rest_, bent_, "-o", output_, "--report", report_file, "--whole-mesh"};
+  for (const RepairStageInfo& stage : repair_stages()) {
+    if (stage.optional) arguments.push_back("--no-" + stage.name);
+  }
+  const CommandResult result = run_posekit(arguments);
+  ASSERT_EQ(result.exit_status, 0) << result.err;
+  std::ifstream stream(report_file);
+  const nlohmann::json report = nlohmann::json::parse(stream);
+  EXPECT_TRUE(report.at("field").at("whole_mesh").get<bool>());
+  for (const nlohmann::json& stage : report.at("stages")) {
+    if (stage.at("name") == "field") continue;
+    EXPECT_EQ(stage.at("skipped"), "disabled") << stage.at("name");
+  }
 }
 
 TEST_F(CorrectCommand, RejectsDifferentConnectivity) {
@@ -256,6 +283,8 @@ TEST_F(CorrectCommand, RejectsParametersOutOfRange) {
   expect_failure_without_output(run_posekit({"correct", rest_, bent_, "-o", output_, "--error-factor", "-1"}), 2);
   expect_failure_without_output(run_posekit({"correct", rest_, bent_, "-o", output_, "--intersection-substeps", "0"}), 2);
   expect_failure_without_output(run_posekit({"correct", rest_, bent_, "-o", output_, "--separation-tolerance", "0"}), 2);
+  expect_failure_without_output(run_posekit({"correct", rest_, bent_, "-o", output_, "--collar-rings", "0"}), 2);
+  expect_failure_without_output(run_posekit({"correct", rest_, bent_, "-o", output_, "--no-field"}), 2);
   expect_failure_without_output(run_posekit({"correct", rest_, bent_, "-o", output_, "--device", "abacus"}), 1);
 }
 

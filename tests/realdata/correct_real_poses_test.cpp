@@ -44,11 +44,11 @@ TEST_P(CorrectRealPose, RemovesNewIntersectionsAndReproducesTheRest) {
   const std::vector<int> fresh =
       new_intersecting_faces(self_intersecting_faces(result, reference.faces), reference_faces);
   EXPECT_TRUE(fresh.empty()) << fresh.size() << " new intersecting faces, e.g. face " << fresh.front();
-  EXPECT_EQ(report.new_intersecting_faces, static_cast<int>(fresh.size()));
-  EXPECT_LT(report.median_distance_to_target, 1e-3 * report.bounding_box_diagonal)
-      << "median distance / diagonal = " << report.median_distance_to_target / report.bounding_box_diagonal;
-  EXPECT_EQ(report.integration.failures, 0);
-  EXPECT_LT(report.result_intersecting_faces, report.target_intersecting_faces);
+  EXPECT_EQ(report.result.new_intersecting_faces, static_cast<int>(fresh.size()));
+  EXPECT_LT(report.result.median_distance_to_target, 1e-3 * report.result.bounding_box_diagonal)
+      << "median distance / diagonal = " << report.result.median_distance_to_target / report.result.bounding_box_diagonal;
+  for (const FieldRegionReport& region : report.field.regions) EXPECT_EQ(region.integration.failures, 0);
+  EXPECT_LT(report.result.intersecting_faces, report.result.target_intersecting_faces);
 }
 
 std::string pose_name(const ::testing::TestParamInfo<PosePair>& info) {

@@ -1,9 +1,14 @@
-// End-to-end pose correction on the CPU device, stage by stage: the generated demo arm (its 135
-// degree bend against the rest pose) and, when ../shared/data is present, lion-reference -> lion-01
-// (integration leaves little to mend), lion-08 (the rollback, local correction and relaxation
-// work) and lion-04 (the local correction of the target itself); and the separation of cat-07's own
-// contacts alone. Counters are the seconds of each stage of the last iteration, the centers and the
-// new intersecting faces of the result.
+// Pose correction end to end on the CPU device, stage by stage.
+//  - BM_CorrectArm: the generated arm's 135 degree bend at 4k, 16k, 64k and 256k vertices, with the
+//    regions of interest and with the whole mesh: finer (the same arm, more rings) and longer (the
+//    same joint at the same resolution, more arm away from it). How the time grows with the vertex
+//    count is the point: it should follow the joint, not the mesh.
+//  - BM_CorrectSharedPose: every lion, cat and horse target against its reference, elephant-02 ...
+//    elephant-10 against elephant-01 and crane frames against crane-0014, when ../shared/data is
+//    present (skipped with a message otherwise).
+//  - BM_SeparateContacts: the separation of cat-07's own contacts alone.
+// Counters: the seconds of the field's steps and of each repair stage that ran, the centers, the
+// region's vertices and the new intersecting faces of the result.
 #include <posekit/correct.hpp>
 #include <posekit/cpu_device.hpp>
 #include <posekit/demo_shape.hpp>
@@ -15,7 +20,6 @@
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
-#include <iostream>
 #include <memory>
 #include <string>
 
@@ -23,68 +27,121 @@ namespace posekit {
 namespace {
 
 void correct_and_count(benchmark::State& state, const Eigen::MatrixX3d& reference, const Eigen::MatrixX3d& target,
-                       const Eigen::MatrixX3i& faces) {
+                       const Eigen::MatrixX3i& faces, const CorrectionOptions& options = {}) {
   const std::unique_ptr<Device> device = make_cpu_device();
   CorrectionReport report;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(correct_pose(reference, target, faces, *device, CorrectionOptions{}, &report));
+    benchmark::DoNotOptimize(correct_pose(reference, target, faces, *device, options, &report));
   }
-  state.counters["key_frames_s"] = report.seconds.key_frames;
-  state.counters["classification_s"] = report.seconds.classification;
-  state.counters["constraints_s"] = report.seconds.constraints;
-  state.counters["fitting_s"] = report.seconds.fitting;
-  state.counters["integration_s"] = report.seconds.integration;
-  state.counters["drift_s"] = report.seconds.drift_compensation;
-  state.counters["reproduction_s"] = report.seconds.reproduction;
-  state.counters["verification_s"] = report.seconds.verification;
-  state.counters["rollback_s"] = report.seconds.rollback;
-  state.counters["local_s"] = report.seconds.local_correction;
-  state.counters["relaxation_s"] = report.seconds.relaxation;
-  state.counters["separation_s"] = report.seconds.separation;
-  state.counters["centers"] = report.fit.centers;
-  state.counters["new_faces"] = report.new_intersecting_faces;
+  state.counters["vertices"] = static_cast<double>(reference.rows());
+  state.counters["region_vertices"] = report.field.region_vertices;
+  state.counters["key_frames_s"] = report.field.seconds.key_frames;
+  state.counters["classification_s"] = report.field.seconds.classification;
+  state.counters["fitting_s"] = report.field.seconds.fitting;
+  state.counters["integration_s"] = report.field.seconds.integration + report.field.seconds.drift_compensation;
+  state.counters["reproduction_s"] = report.field.seconds.reproduction;
+  for (const StageReport& stage : report.stages) {
+    if (stage.ran) state.counters[stage.name + "_s"] += stage.seconds;
+  }
+  state.counters["centers"] = report.field.centers();
+  state.counters["new_faces"] = report.result.new_intersecting_faces;
+  state.counters["median_per_diagonal"] = report.result.median_distance_to_target / report.result.bounding_box_diagonal;
+  state.counters["stretched"] = report.result.stretched_faces;
 }
 
-void BM_CorrectDemoArm(benchmark::State& state) {
-  DemoArmOptions options;
-  options.bend_angles_degrees = {135.0};
-  const PoseSet arm = make_demo_arm(options);
-  correct_and_count(state, arm.pose(0), arm.pose(1), arm.faces());
+// range(0): about that many thousand vertices; range(1): 1 for a longer arm at the 4k arm's
+// resolution, 0 for a finer arm of the 4k arm's length; range(2): 1 for the whole mesh.
+void BM_CorrectArm(benchmark::State& state) {
+  const auto scale = static_cast<int>(state.range(0) / 4);  // 1, 4, 16, 64
+  DemoArmOptions arm;
+  arm.bend_angles_degrees = {135.0};
+  if (state.range(1) == 1) {
+    arm.cylinder_length *= scale;
+    arm.blend_width = 1.0;
+  } else {
+    int factor = 1;
+    while (factor * factor < scale) ++factor;
+    arm.ring_segments *= factor;
+  }
+  const PoseSet poses = make_demo_arm(arm);
+  CorrectionOptions options;
+  options.whole_mesh = state.range(2) == 1;
+  correct_and_count(state, poses.pose(0), poses.pose(1), poses.faces(), options);
 }
-BENCHMARK(BM_CorrectDemoArm)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_CorrectArm)
+    ->ArgNames({"kvertices", "longer", "whole_mesh"})
+    ->ArgsProduct({{4, 16, 64, 256}, {0, 1}, {0, 1}})
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);
 
-void BM_CorrectSharedLionPose(benchmark::State& state, const std::string& pose) {
-  const std::filesystem::path folder = std::filesystem::path(POSEKIT_BENCH_DATA_DIR) / "lion-poses";
-  if (!std::filesystem::exists(folder / (pose + ".obj"))) {
-    state.SkipWithError(("shared pose data not found: lion-poses/" + pose + ".obj").c_str());
+std::filesystem::path shared_data() { return POSEKIT_BENCH_DATA_DIR; }
+
+void BM_CorrectSharedPose(benchmark::State& state, const std::string& reference_file, const std::string& target_file) {
+  const std::filesystem::path reference_path = shared_data() / reference_file;
+  const std::filesystem::path target_path = shared_data() / target_file;
+  if (!std::filesystem::exists(reference_path) || !std::filesystem::exists(target_path)) {
+    state.SkipWithError(("shared pose data not found: " + target_file).c_str());
     return;
   }
-  const Mesh reference = read_mesh(folder / "lion-reference.obj");
-  const Mesh target = read_mesh(folder / (pose + ".obj"));
+  const Mesh reference = read_mesh(reference_path);
+  const Mesh target = read_mesh(target_path);
   correct_and_count(state, reference.vertices, target.vertices, reference.faces);
 }
-BENCHMARK_CAPTURE(BM_CorrectSharedLionPose, lion_01, std::string("lion-01"))->Unit(benchmark::kSecond)->Iterations(1);
-BENCHMARK_CAPTURE(BM_CorrectSharedLionPose, lion_08, std::string("lion-08"))->Unit(benchmark::kSecond)->Iterations(1);
-BENCHMARK_CAPTURE(BM_CorrectSharedLionPose, lion_04, std::string("lion-04"))->Unit(benchmark::kSecond)->Iterations(1);
 
-// The stage that frees cat-07 (1,324 new intersecting faces in the target), on its own.
+// Registers one benchmark per pose of the set: lion, cat and horse targets, elephant-02 to
+// elephant-10, and crane frames 21-44 and 85-95.
+const bool registered = [] {
+  const auto add = [](const std::string& name, const std::string& reference, const std::string& target) {
+    benchmark::RegisterBenchmark(("BM_CorrectSharedPose/" + name).c_str(), BM_CorrectSharedPose, reference, target)
+        ->Unit(benchmark::kSecond)
+        ->Iterations(1);
+  };
+  const auto two_digits = [](int i) { return (i < 10 ? "0" : "") + std::to_string(i); };
+  for (const char* animal : {"lion", "cat"}) {
+    for (int i = 1; i <= 9; ++i) {
+      const std::string folder = std::string(animal) + "-poses/";
+      add(std::string(animal) + "-" + two_digits(i), folder + animal + "-reference.obj",
+          folder + animal + "-" + two_digits(i) + ".obj");
+    }
+  }
+  for (int i = 1; i <= 9; ++i) add("horse-" + two_digits(i), "horse-poses/horse-10.obj", "horse-poses/horse-" + two_digits(i) + ".obj");
+  for (int i = 2; i <= 10; ++i) {
+    add("elephant-" + two_digits(i), "elephant-poses/elephant-01.obj", "elephant-poses/elephant-" + two_digits(i) + ".obj");
+  }
+  for (int frame = 21; frame <= 95; ++frame) {
+    if (frame > 44 && frame < 85) continue;
+    const std::string name = "crane-00" + two_digits(frame);
+    add(name, "crane-sequence/crane-0014.obj", "crane-sequence/" + name + ".obj");
+  }
+  return true;
+}();
+
+// The stage that frees the most entangled cat target, on its own.
 void BM_SeparateContacts(benchmark::State& state) {
-  const std::filesystem::path folder = std::filesystem::path(POSEKIT_BENCH_DATA_DIR) / "cat-poses";
+  const std::filesystem::path folder = shared_data() / "cat-poses";
   if (!std::filesystem::exists(folder / "cat-07.obj")) {
     state.SkipWithError("shared pose data not found: cat-poses/cat-07.obj");
     return;
   }
   const Mesh reference = read_mesh(folder / "cat-reference.obj");
   const Mesh target = read_mesh(folder / "cat-07.obj");
-  const std::vector<int> reference_faces = self_intersecting_faces(reference.vertices, reference.faces);
-  detail::SeparationResult separation;
+  const std::unique_ptr<Device> device = make_cpu_device();
+  const CorrectionOptions options;
+  const detail::CorrectionContext context = detail::make_context(
+      reference.vertices, target.vertices, reference.faces, *device, options, detail::CorrectionScope::whole_pose, {});
+  int rounds = 0;
+  int before = 0;
+  int after = 0;
   for (auto _ : state) {
-    separation = detail::separate_contacts(target.vertices, reference.vertices, reference.faces, reference_faces);
-    benchmark::DoNotOptimize(separation.pose.data());
+    const detail::SeparationOutcome separation = detail::separate_contacts(context);
+    rounds = separation.rounds;
+    before = separation.new_faces_before;
+    after = separation.best.new_face_count();
+    benchmark::DoNotOptimize(separation.best.pose().data());
   }
-  state.counters["rounds"] = separation.iterations;
-  state.counters["new_faces_before"] = separation.new_faces_before;
-  state.counters["new_faces"] = separation.new_faces_after;
+  state.counters["rounds"] = rounds;
+  state.counters["new_faces_before"] = before;
+  state.counters["new_faces"] = after;
 }
 BENCHMARK(BM_SeparateContacts)->Unit(benchmark::kSecond)->Iterations(1);
 

@@ -32,9 +32,9 @@ void run_demo(const std::string& output_dir, const std::string& device_name) {
     output.replace_filename(files[pose].stem().string() + "-corrected.obj");
     write_mesh(output, Mesh{corrected, rest.faces});
     std::cout << std::left << std::setw(22) << files[pose].filename().string() << std::right << std::setw(16)
-              << report.target_intersecting_faces << std::setw(16) << report.result_intersecting_faces << std::setw(8)
-              << report.new_intersecting_faces << std::setw(10) << report.fit.centers << std::setw(10) << std::fixed
-              << std::setprecision(2) << report.seconds.total << "\n";
+              << report.result.target_intersecting_faces << std::setw(16) << report.result.intersecting_faces
+              << std::setw(8) << report.result.new_intersecting_faces << std::setw(10) << report.field.centers()
+              << std::setw(10) << std::fixed << std::setprecision(2) << report.seconds << "\n";
   }
   std::cout << "corrected poses written beside the generated ones (*-corrected.obj)\n";
 }

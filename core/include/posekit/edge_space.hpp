@@ -2,6 +2,7 @@
 // coordinates in which joints are interpolated (and the edge-space baseline works).
 #pragma once
 
+#include <posekit/geometry.hpp>
 #include <posekit/mesh.hpp>
 #include <posekit/topology.hpp>
 
@@ -11,8 +12,6 @@
 
 namespace posekit {
 
-/// #E lengths of the #E by 2 `edges` (rows of edge_map) of the #V by 3 `vertices`.
-Eigen::VectorXd edge_lengths(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX2i& edges);
 
 /// Edge lengths and dihedral angles of every pose of a pose set.
 struct EdgeSpaceCoordinates {

@@ -27,6 +27,9 @@ Eigen::VectorXd face_areas(const Eigen::MatrixX3d& vertices, const Eigen::Matrix
 /// A vertex without a face of non-zero area gets a zero row. Throws ArgumentError on a bad index.
 Eigen::MatrixX3d vertex_normals(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces);
 
+/// #E lengths of the #E by 2 `edges` (rows of edge_map) of the #V by 3 `vertices`.
+Eigen::VectorXd edge_lengths(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX2i& edges);
+
 /// Per face of `faces`, the largest ratio of an edge's length in `pose` to the longer of its lengths in
 /// `first` and `second` (#V by 3 each) and `shortest` (>= 0): how much a face grew beyond both of two
 /// poses, as a corrected pose against its reference and target (2: an edge twice as long as in

@@ -1,18 +1,20 @@
 #include "correct/contact_separation.hpp"
 
+#include "correction_fixture.hpp"
 #include "two_spheres.hpp"
 
 #include <posekit/self_intersections.hpp>
+#include <posekit/winding_numbers.hpp>
 
 #include <gtest/gtest.h>
 
 namespace posekit::detail {
 namespace {
 
-using testing::two_spheres;
+using posekit::testing::two_spheres;
 
-TEST(ContactSeparation, WindingNumberIsOneInsideHalfOnTheSurfaceZeroOutside) {
-  const Mesh sphere = testing::icosphere(3);
+TEST(WindingNumbers, OneInsideHalfOnTheSurfaceZeroOutside) {
+  const Mesh sphere = posekit::testing::icosphere(3);
   Eigen::MatrixX3d points(4, 3);
   points << 0, 0, 0, 0.5, 0.2, -0.1, 3, 0, 0, 0, 0, 0;
   points.row(3) = sphere.vertices.row(100);
@@ -31,18 +33,18 @@ TEST(ContactSeparation, SeparatesOverlappingPartsAndLeavesTheRestAlone) {
   ASSERT_TRUE(self_intersecting_faces(apart.vertices, apart.faces).empty());
   const auto overlapping = static_cast<int>(self_intersecting_faces(pressed.vertices, pressed.faces).size());
   ASSERT_GT(overlapping, 0);
-
-  const SeparationResult separation = separate_contacts(pressed.vertices, apart.vertices, apart.faces, {});
+  const testing::StageFixture fixture(apart.vertices, pressed.vertices, apart.faces);
+  const SeparationOutcome separation = separate_contacts(fixture.context);
   EXPECT_EQ(separation.new_faces_before, overlapping);
-  EXPECT_EQ(separation.new_faces_after, 0);
-  EXPECT_GT(separation.iterations, 0);
-  EXPECT_TRUE(self_intersecting_faces(separation.pose, apart.faces).empty());
+  EXPECT_EQ(separation.best.new_face_count(), 0);
+  EXPECT_GT(separation.rounds, 0);
+  EXPECT_TRUE(self_intersecting_faces(separation.best.pose(), apart.faces).empty());
   int unchanged = 0;
   for (Eigen::Index v = 0; v < pressed.vertices.rows(); ++v) {
     if (std::abs(pressed.vertices(v, 0)) > 0.5) {
-      EXPECT_EQ(separation.pose.row(v), pressed.vertices.row(v)) << v;
+      EXPECT_EQ(separation.best.pose().row(v), pressed.vertices.row(v)) << v;
     }
-    if (separation.pose.row(v) == pressed.vertices.row(v)) ++unchanged;
+    if (separation.best.pose().row(v) == pressed.vertices.row(v)) ++unchanged;
   }
   EXPECT_GT(unchanged, pressed.vertices.rows() / 2);
 }
@@ -50,12 +52,11 @@ TEST(ContactSeparation, SeparatesOverlappingPartsAndLeavesTheRestAlone) {
 // Intersections the reference has too are not the stage's to remove.
 TEST(ContactSeparation, LeavesTheReferencesOwnIntersectionsAlone) {
   const Mesh pressed = two_spheres(1.6);
-  const std::vector<int> intersecting = self_intersecting_faces(pressed.vertices, pressed.faces);
-  const SeparationResult separation =
-      separate_contacts(pressed.vertices, pressed.vertices, pressed.faces, intersecting);
+  const testing::StageFixture fixture(pressed.vertices, pressed.vertices, pressed.faces);
+  const SeparationOutcome separation = separate_contacts(fixture.context);
   EXPECT_EQ(separation.new_faces_before, 0);
-  EXPECT_EQ(separation.iterations, 0);
-  EXPECT_EQ(separation.pose, pressed.vertices);
+  EXPECT_EQ(separation.rounds, 0);
+  EXPECT_EQ(separation.best.pose(), pressed.vertices);
 }
 
 }  // namespace

@@ -1,8 +1,8 @@
 #include "correct/local_correction.hpp"
 
+#include "correction_fixture.hpp"
 #include "two_sheets.hpp"
 
-#include <posekit/cpu_device.hpp>
 #include <posekit/self_intersections.hpp>
 
 #include <gtest/gtest.h>
@@ -24,34 +24,29 @@ Eigen::MatrixX3d waved(Eigen::MatrixX3d pose) {
 // the bottom sheet.
 TEST(LocalCorrection, CorrectsAnEntangledRegionAgainOnItsOwn) {
   const TwoSheets sheets = two_sheets(25);
-  const Eigen::MatrixX3d reference = waved(sheets.vertices);
-  Eigen::MatrixX3d result = waved(dented(sheets, 0.3));
-  const Eigen::MatrixX3d entangled = result;
-  const int intersecting = static_cast<int>(self_intersecting_faces(result, sheets.faces).size());
-  ASSERT_GT(intersecting, 0);
-  const std::unique_ptr<Device> device = make_cpu_device();
-  const LocalCorrectionResult local =
-      correct_regions_locally(result, reference, sheets.faces, {}, *device, CorrectionOptions{});
-  EXPECT_EQ(local.new_faces_before, intersecting);
+  const Eigen::MatrixX3d entangled = waved(dented(sheets, 0.3));
+  const testing::StageFixture fixture(waved(sheets.vertices), entangled, sheets.faces);
+  Candidate result = fixture.candidate(entangled);
+  ASSERT_GT(result.new_face_count(), 0);
+  const SweepOutcome local = correct_regions_locally(result, fixture.context);
   EXPECT_GE(local.regions, 1);
-  EXPECT_TRUE(self_intersecting_faces(result, sheets.faces).empty());
+  EXPECT_EQ(result.new_face_count(), 0);
+  EXPECT_TRUE(self_intersecting_faces(result.pose(), sheets.faces).empty());
   // The sheets' rims are outside every region and did not move.
-  EXPECT_EQ(result.row(0), entangled.row(0));
-  EXPECT_EQ(result.row(sheets.top(0, 0)), entangled.row(sheets.top(0, 0)));
+  EXPECT_EQ(result.pose().row(0), entangled.row(0));
+  EXPECT_EQ(result.pose().row(sheets.top(0, 0)), entangled.row(sheets.top(0, 0)));
   EXPECT_GT(local.vertices, 0);
-  EXPECT_LT(local.vertices, static_cast<int>(result.rows()));
+  EXPECT_LT(local.vertices, static_cast<int>(entangled.rows()));
 }
 
 TEST(LocalCorrection, LeavesACleanResultAlone) {
   const TwoSheets sheets = two_sheets(15);
-  Eigen::MatrixX3d result = dented(sheets, 0.1);
-  const Eigen::MatrixX3d clean = result;
-  const std::unique_ptr<Device> device = make_cpu_device();
-  const LocalCorrectionResult local =
-      correct_regions_locally(result, sheets.vertices, sheets.faces, {}, *device, CorrectionOptions{});
-  EXPECT_EQ(local.new_faces_before, 0);
+  const Eigen::MatrixX3d clean_pose = dented(sheets, 0.1);
+  const testing::StageFixture fixture(sheets.vertices, clean_pose, sheets.faces);
+  Candidate result = fixture.candidate(clean_pose);
+  const SweepOutcome local = correct_regions_locally(result, fixture.context);
   EXPECT_EQ(local.regions, 0);
-  EXPECT_EQ(result, clean);
+  EXPECT_EQ(result.pose(), clean_pose);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "correct/time_rollback.hpp"
 
+#include "correction_fixture.hpp"
 #include "two_sheets.hpp"
 
 #include <posekit/self_intersections.hpp>
@@ -19,9 +20,7 @@ struct DentPaths {
     std::vector<Eigen::MatrixX3d> samples;
     for (int k = 0; k <= segments; ++k) {
       const Eigen::MatrixX3d pose = dented(*sheets, depth * k / segments);
-      Eigen::MatrixX3d rows(static_cast<Eigen::Index>(vertices.size()), 3);
-      for (size_t i = 0; i < vertices.size(); ++i) rows.row(static_cast<Eigen::Index>(i)) = pose.row(vertices[i]);
-      samples.push_back(rows);
+      samples.push_back(pose(vertices, Eigen::all));
     }
     return samples;
   }
@@ -30,38 +29,36 @@ struct DentPaths {
 TEST(TimeRollback, MovesADentPressedThroughAnotherSheetBackUntilItIsClean) {
   const TwoSheets sheets = two_sheets(41);
   DentPaths paths{&sheets, 0.3};
-  Eigen::MatrixX3d result = dented(sheets, 0.3);  // through the bottom sheet, 0.2 below
-  const Eigen::MatrixX3d pressed = result;
-  const int intersecting = static_cast<int>(self_intersecting_faces(result, sheets.faces).size());
-  ASSERT_GT(intersecting, 0);
-  const RollbackResult rollback = roll_back_regions(
-      result, [&](const std::vector<int>& v, int s) { return paths(v, s); }, sheets.faces, {});
-  EXPECT_EQ(rollback.new_faces_before, intersecting);
-  EXPECT_EQ(rollback.new_faces_after, 0);
-  EXPECT_TRUE(self_intersecting_faces(result, sheets.faces).empty());
-  EXPECT_EQ(rollback.regions, 1);
+  const Eigen::MatrixX3d pressed = dented(sheets, 0.3);  // through the bottom sheet, 0.2 below
+  const testing::StageFixture fixture(sheets.vertices, pressed, sheets.faces);
+  Candidate result = fixture.candidate(pressed);
+  ASSERT_GT(result.new_face_count(), 0);
+  const RollbackOutcome rollback =
+      roll_back_regions(result, fixture.context, [&](const std::vector<int>& v, int s) { return paths(v, s); });
+  EXPECT_EQ(result.new_face_count(), 0);
+  EXPECT_TRUE(self_intersecting_faces(result.pose(), sheets.faces).empty());
+  EXPECT_EQ(rollback.sweep.regions, 1);
   // The latest clean time: the dent's 0.3 * t must stay above the bottom sheet 0.2 below.
   EXPECT_LT(rollback.earliest_time, 0.2 / 0.3);
   EXPECT_GE(rollback.earliest_time, 0.3);
   // The bottom sheet did not move (its path lines stand still), nor did the top sheet's rim.
-  EXPECT_EQ(result.topRows(sheets.n * sheets.n), pressed.topRows(sheets.n * sheets.n));
-  EXPECT_EQ(result.row(sheets.top(0, 0)), pressed.row(sheets.top(0, 0)));
-  EXPECT_LT(rollback.vertices, sheets.n * sheets.n / 2);
+  EXPECT_EQ(result.pose().topRows(sheets.n * sheets.n), pressed.topRows(sheets.n * sheets.n));
+  EXPECT_EQ(result.pose().row(sheets.top(0, 0)), pressed.row(sheets.top(0, 0)));
+  EXPECT_LT(rollback.sweep.vertices, sheets.n * sheets.n / 2);
 }
 
 TEST(TimeRollback, KeepsTheIntersectionsOfTheReference) {
   const TwoSheets sheets = two_sheets(21);
   DentPaths paths{&sheets, 0.3};
-  Eigen::MatrixX3d result = dented(sheets, 0.3);
-  const Eigen::MatrixX3d pressed = result;
+  const Eigen::MatrixX3d pressed = dented(sheets, 0.3);
   // Intersections the reference already has are not the rollback's to remove.
-  const RollbackResult rollback = roll_back_regions(
-      result, [&](const std::vector<int>& v, int s) { return paths(v, s); }, sheets.faces,
-      self_intersecting_faces(result, sheets.faces));
-  EXPECT_EQ(rollback.new_faces_before, 0);
-  EXPECT_EQ(rollback.regions, 0);
+  const testing::StageFixture fixture(pressed, pressed, sheets.faces);
+  Candidate result = fixture.candidate(pressed);
+  const RollbackOutcome rollback =
+      roll_back_regions(result, fixture.context, [&](const std::vector<int>& v, int s) { return paths(v, s); });
+  EXPECT_EQ(rollback.sweep.regions, 0);
   EXPECT_EQ(paths.calls, 0);
-  EXPECT_EQ(result, pressed);
+  EXPECT_EQ(result.pose(), pressed);
 }
 
 }  // namespace

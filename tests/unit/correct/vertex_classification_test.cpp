@@ -1,6 +1,7 @@
 #include "correct/vertex_classification.hpp"
 
 #include <posekit/error.hpp>
+#include <posekit/self_intersections.hpp>
 
 #include <gtest/gtest.h>
 
@@ -11,6 +12,12 @@ namespace {
 struct PassingTriangles {
   Eigen::MatrixX3i faces;
   std::vector<Eigen::MatrixX3d> frames;
+  std::vector<FacePairs> pairs() const {
+    std::vector<FacePairs> out;
+    for (const Eigen::MatrixX3d& frame : frames) out.push_back(self_intersecting_face_pairs(frame, faces));
+    return out;
+  }
+  AdjacencyLists neighbours() const { return vertex_neighbours(faces, 6); }
 };
 
 PassingTriangles passing_triangles() {
@@ -28,7 +35,7 @@ PassingTriangles passing_triangles() {
 
 TEST(ClassifyVertices, FlagsEachFramesIntersectionsAndTheirTransit) {
   const PassingTriangles scene = passing_triangles();
-  const VertexClassification classification = classify_vertices(scene.frames, scene.faces, 0, {});
+  const VertexClassification classification = classify_vertices(scene.pairs(), scene.faces, scene.neighbours(), 0, {});
   ASSERT_EQ(classification.unconstrained_in_frame.size(), 3u);
   for (int v = 0; v < 6; ++v) {
     EXPECT_FALSE(classification.unconstrained_in_frame[0][v]) << v;
@@ -46,7 +53,7 @@ TEST(ClassifyVertices, FlagsEachFramesIntersectionsAndTheirTransit) {
 TEST(ClassifyVertices, UserExclusionsHoldInEveryFrame) {
   PassingTriangles scene = passing_triangles();
   scene.frames[1] = scene.frames[0];
-  const VertexClassification classification = classify_vertices(scene.frames, scene.faces, 1, {4});
+  const VertexClassification classification = classify_vertices(scene.pairs(), scene.faces, scene.neighbours(), 1, {4});
   for (const std::vector<char>& flags : classification.unconstrained_in_frame) {
     EXPECT_TRUE(flags[4]);
     EXPECT_FALSE(flags[0]);
@@ -54,7 +61,7 @@ TEST(ClassifyVertices, UserExclusionsHoldInEveryFrame) {
   EXPECT_EQ(classification.excluded, 1);
   EXPECT_TRUE(classification.near_intersections[4]);
   EXPECT_FALSE(classification.near_intersections[3]);
-  EXPECT_THROW(classify_vertices(scene.frames, scene.faces, 1, {6}), ArgumentError);
+  EXPECT_THROW(classify_vertices(scene.pairs(), scene.faces, scene.neighbours(), 1, {6}), ArgumentError);
 }
 
 }  // namespace

@@ -1,0 +1,65 @@
+// What every stage of a correction shares: the two poses in the unit-sphere frame, the connectivity
+// and its adjacency, the reference's own intersections, the device, the options, where the run is
+// nested, and (once the field correction has run) the field's result and path lines.
+#pragma once
+
+#include "correct/path_lines.hpp"
+#include "correct/vertex_classification.hpp"
+
+#include <posekit/correct.hpp>
+#include <posekit/device.hpp>
+#include <posekit/self_intersection_tracker.hpp>
+#include <posekit/topology.hpp>
+
+#include <Eigen/Core>
+
+#include <optional>
+#include <vector>
+
+namespace posekit::detail {
+
+/// Where a correction runs. Nested runs (a region on its own, a leg through the halfway pose) leave
+/// out the stages that would nest again or that the whole pose runs after them; each stage says
+/// where it runs (RepairStage::scopes), so no caller edits a copy of the options.
+enum class CorrectionScope { whole_pose = 1, region = 2, leg = 4 };
+
+/// A set of scopes, as a bit mask of CorrectionScope values.
+using ScopeSet = unsigned;
+constexpr ScopeSet kEveryScope = 7;
+constexpr ScopeSet scope_bit(CorrectionScope scope) { return static_cast<ScopeSet>(scope); }
+
+/// The field correction's outcome, which later stages build on.
+struct FieldOutcome {
+  VertexClassification classification;
+  Eigen::MatrixX3d integrated;  ///< the field's end positions in its regions, the target elsewhere
+  PathLines paths;              ///< the path lines every vertex took
+};
+
+struct CorrectionContext {
+  const Eigen::MatrixX3d& reference;  ///< unit-sphere frame
+  const Eigen::MatrixX3d& target;     ///< unit-sphere frame
+  const Eigen::MatrixX3i& faces;
+  Device& device;
+  const CorrectionOptions& options;
+  CorrectionScope scope;
+  AdjacencyLists neighbours;                 ///< vertex one-rings
+  FacePairs reference_pairs;                 ///< the reference's intersecting pairs
+  FacePairs target_pairs;                    ///< the target's
+  std::vector<int> reference_intersecting;   ///< faces of reference_pairs, sorted: never new
+  double diagonal = 0;                       ///< the reference's bounding-box diagonal
+  CorrectionProgress progress;
+  FieldReport* field_report = nullptr;       ///< filled by the field correction
+  std::optional<FieldOutcome> field;         ///< set by the field correction
+
+  int vertex_count() const { return static_cast<int>(reference.rows()); }
+  void report_progress(const std::string& step, double fraction) const {
+    if (progress) progress(step, fraction);
+  }
+};
+
+/// Builds the context: adjacency, the two poses' intersecting pairs and the diagonal.
+CorrectionContext make_context(const Eigen::MatrixX3d& reference, const Eigen::MatrixX3d& target,
+                               const Eigen::MatrixX3i& faces, Device& device, const CorrectionOptions& options,
+                               CorrectionScope scope, const CorrectionProgress& progress);
+
+}  // namespace posekit::detail

@@ -1,0 +1,58 @@
+// Correction in two legs through the pose halfway between the reference and the target in edge
+// space (edge lengths and dihedral angles interpolated), each leg with its own key frames and
+// field: the reference to the halfway pose, then the corrected halfway pose to the target. On the
+// most entangled poses the two shorter motions free what the whole way could not; the halfway pose
+// of the gradient-space key frames did worse than the edge-space one (docs/correct.md).
+#include "correct/nested_correction.hpp"
+#include "correct/repair_stage.hpp"
+
+#include <posekit/error.hpp>
+#include <posekit/interpolate.hpp>
+#include <posekit/mesh.hpp>
+
+namespace posekit::detail {
+namespace {
+
+class HalfwayStage final : public RepairStage {
+ public:
+  HalfwayStage()
+      : RepairStage({"halfway", "correct in two legs through the pose halfway in edge space"},
+                    scope_bit(CorrectionScope::whole_pose)) {}
+
+  std::optional<Candidate> run(const Candidate& current, CorrectionContext& context, StageReport& report) override {
+    Eigen::MatrixX3d halfway;
+    try {
+      PoseSet ends(context.faces);
+      ends.add_pose(context.reference);
+      ends.add_pose(context.target);
+      InterpolationOptions edge_space;
+      edge_space.method = InterpolationMethod::edge;
+      halfway = interpolate_poses(ends, two_pose_weights(0.5), edge_space);
+    } catch (const DeviceError&) {
+      throw;
+    } catch (const Error&) {
+      return std::nullopt;  // no halfway pose for this mesh (edge space needs a manifold surface)
+    }
+    CorrectionReport first_leg;
+    const Eigen::MatrixX3d halfway_corrected = correct_in_scope(context.reference, halfway, context.faces, context.device,
+                                                                context.options, CorrectionScope::leg, &first_leg);
+    const Eigen::MatrixX3d corrected = correct_in_scope(halfway_corrected, context.target, context.faces, context.device,
+                                                        context.options, CorrectionScope::leg);
+    Probe probe = current.probe(corrected);
+    report.details = {{"halfway_new_faces", first_leg.result.new_intersecting_faces}};
+    report.regions = 1;
+    report.vertices = static_cast<int>(differing_vertices(probe.pose, current.pose()).size());
+    report.note = "corrected in two legs through the pose halfway in edge space (" +
+                  std::to_string(first_leg.result.new_intersecting_faces) +
+                  " new intersecting faces there after its correction)";
+    Candidate two_legs = current;
+    two_legs.accept(std::move(probe));
+    return two_legs;
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<RepairStage> make_halfway_stage() { return std::make_unique<HalfwayStage>(); }
+
+}  // namespace posekit::detail

@@ -1,0 +1,20 @@
+// A correction run inside another: a region of the pose on its own, or a leg through the halfway
+// pose. It is the whole pipeline (normalization, ladder, report) in a narrower scope, whose stages
+// say themselves whether they run there.
+#pragma once
+
+#include "correct/correction_context.hpp"
+
+#include <posekit/correct.hpp>
+
+namespace posekit::detail {
+
+/// Corrects `target` against `reference` (#V by 3 each, in any frame) of the #F by 3 `faces` as
+/// correct_pose() does, with the stages of `scope` only. The user's excluded vertices name vertices
+/// of the whole pose and count only in CorrectionScope::whole_pose.
+Eigen::MatrixX3d correct_in_scope(const Eigen::MatrixX3d& reference, const Eigen::MatrixX3d& target,
+                                  const Eigen::MatrixX3i& faces, Device& device, const CorrectionOptions& options,
+                                  CorrectionScope scope, CorrectionReport* report = nullptr,
+                                  const CorrectionProgress& progress = {});
+
+}  // namespace posekit::detail

@@ -1,0 +1,95 @@
+#include "correct/repair_ladder.hpp"
+
+#include <posekit/error.hpp>
+
+#include <algorithm>
+#include <chrono>
+
+namespace posekit::detail {
+
+bool RepairStage::enabled(const CorrectionOptions& options) const {
+  return !info_.optional || std::find(options.disabled_stages.begin(), options.disabled_stages.end(), info_.name) ==
+                                options.disabled_stages.end();
+}
+
+bool RepairStage::wanted(const Candidate& current, const CorrectionContext& /*context*/) const {
+  return current.new_face_count() > 0;
+}
+
+// Field first; then the stages that change least (a region restored, moved back in time, corrected
+// anew on its own, relaxed); then the costly ones that start again (two legs); then the target
+// given back wherever nothing is wrong, and last the separation of the target's own contacts,
+// which replaces the correction only where that is better.
+RepairLadder default_repair_ladder() {
+  RepairLadder ladder;
+  ladder.push_back(make_field_stage());
+  ladder.push_back(make_fallback_stage());
+  ladder.push_back(make_rollback_stage());
+  ladder.push_back(make_local_correction_stage());
+  ladder.push_back(make_relaxation_stage());
+  ladder.push_back(make_halfway_stage());
+  ladder.push_back(make_final_reproduction_stage());
+  ladder.push_back(make_contact_separation_stage());
+  return ladder;
+}
+
+Candidate run_repair_ladder(const RepairLadder& ladder, Candidate start, CorrectionContext& context,
+                            std::vector<StageReport>& reports) {
+  Candidate current = std::move(start);
+  for (const std::unique_ptr<RepairStage>& stage : ladder) {
+    StageReport report;
+    report.name = stage->info().name;
+    report.new_faces_before = current.new_face_count();
+    if (!stage->enabled(context.options)) {
+      report.skipped = "disabled";
+    } else if (!stage->runs_in(context.scope)) {
+      report.skipped = "nested run";
+    } else if (!stage->wanted(current, context)) {
+      report.skipped = "nothing to repair";
+    } else {
+      const auto begin = std::chrono::steady_clock::now();
+      context.report_progress(report.name, 0.0);
+      report.ran = true;
+      std::optional<Candidate> proposal = stage->run(current, context, report);
+      if (proposal && better(*proposal, current, context.target)) {
+        current = std::move(*proposal);
+        report.kept = true;
+      }
+      if (!report.kept) report.note.clear();
+      report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+      context.report_progress(report.name, 1.0);
+    }
+    report.new_faces_after = current.new_face_count();
+    reports.push_back(std::move(report));
+  }
+  return current;
+}
+
+void check_disabled_stages(const std::vector<std::string>& disabled) {
+  for (const std::string& name : disabled) {
+    const std::vector<RepairStageInfo>& stages = repair_stages();
+    const auto found = std::find_if(stages.begin(), stages.end(), [&](const RepairStageInfo& s) { return s.name == name; });
+    if (found == stages.end()) {
+      std::string known;
+      for (const RepairStageInfo& s : stages) {
+        if (s.optional) known += (known.empty() ? "" : ", ") + s.name;
+      }
+      throw ArgumentError("disabled_stages names '" + name + "', which is not a repair stage (" + known + ")");
+    }
+    if (!found->optional) throw ArgumentError("the " + name + " stage cannot be disabled");
+  }
+}
+
+}  // namespace posekit::detail
+
+const std::vector<posekit::RepairStageInfo>& posekit::repair_stages() {
+  static const std::vector<RepairStageInfo> stages = [] {
+    std::vector<RepairStageInfo> infos;
+    for (const std::unique_ptr<detail::RepairStage>& stage : detail::default_repair_ladder()) {
+      const auto same = [&](const RepairStageInfo& info) { return info.name == stage->info().name; };
+      if (std::none_of(infos.begin(), infos.end(), same)) infos.push_back(stage->info());
+    }
+    return infos;
+  }();
+  return stages;
+}

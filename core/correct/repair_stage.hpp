@@ -1,0 +1,53 @@
+// One stage of the repair ladder: a name, the options that switch it off, the scopes it runs in,
+// when it is wanted, and a run that proposes a better candidate. The ladder (repair_ladder.hpp)
+// runs the stages in their order and keeps a proposal only when it is better; each stage fills its
+// own report entry.
+#pragma once
+
+#include "correct/candidate.hpp"
+#include "correct/correction_context.hpp"
+
+#include <posekit/correct.hpp>
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace posekit::detail {
+
+class RepairStage {
+ public:
+  RepairStage(RepairStageInfo info, ScopeSet scopes) : info_(std::move(info)), scopes_(scopes) {}
+  virtual ~RepairStage() = default;
+  RepairStage(const RepairStage&) = delete;
+  RepairStage& operator=(const RepairStage&) = delete;
+
+  const RepairStageInfo& info() const { return info_; }
+  /// Whether the stage runs in `scope` (nested runs leave some out).
+  bool runs_in(CorrectionScope scope) const { return (scopes_ & scope_bit(scope)) != 0; }
+  /// Whether the options allow the stage: not disabled by name, and whatever else it needs.
+  virtual bool enabled(const CorrectionOptions& options) const;
+  /// Whether there is anything for the stage to do on `current`: by default, new faces remain.
+  virtual bool wanted(const Candidate& current, const CorrectionContext& context) const;
+  /// A candidate to compare with `current`, or none. Fills `report`'s regions, vertices, note and
+  /// details; the ladder fills the rest.
+  virtual std::optional<Candidate> run(const Candidate& current, CorrectionContext& context, StageReport& report) = 0;
+
+ private:
+  RepairStageInfo info_;
+  ScopeSet scopes_;
+};
+
+using RepairLadder = std::vector<std::unique_ptr<RepairStage>>;
+
+// The stages, each defined in the file of its method.
+std::unique_ptr<RepairStage> make_field_stage();                // field_correction.cpp
+std::unique_ptr<RepairStage> make_fallback_stage();             // intersection_fallback.cpp
+std::unique_ptr<RepairStage> make_rollback_stage();             // time_rollback.cpp
+std::unique_ptr<RepairStage> make_local_correction_stage();     // local_correction.cpp
+std::unique_ptr<RepairStage> make_relaxation_stage();           // region_relaxation.cpp
+std::unique_ptr<RepairStage> make_halfway_stage();              // halfway_legs.cpp
+std::unique_ptr<RepairStage> make_final_reproduction_stage();   // target_reproduction.cpp
+std::unique_ptr<RepairStage> make_contact_separation_stage();   // contact_separation.cpp
+
+}  // namespace posekit::detail

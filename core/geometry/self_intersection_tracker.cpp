@@ -1,0 +1,297 @@
+#include "geometry/face_pair_test.hpp"
+#include "geometry/vertex_checks.hpp"
+
+#include <posekit/error.hpp>
+#include <posekit/self_intersection_tracker.hpp>
+#include <posekit/self_intersections.hpp>
+#include <posekit/topology.hpp>
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <unordered_map>
+
+namespace posekit {
+namespace {
+
+struct Box {
+  std::array<double, 3> min{};
+  std::array<double, 3> max{};
+
+  bool overlaps(const Box& other) const {
+    for (int axis = 0; axis < 3; ++axis) {
+      if (min[axis] > other.max[axis] || other.min[axis] > max[axis]) return false;
+    }
+    return true;
+  }
+  double extent() const { return std::max({max[0] - min[0], max[1] - min[1], max[2] - min[2]}); }
+};
+
+Box face_box(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces, int f) {
+  Box box;
+  for (int axis = 0; axis < 3; ++axis) {
+    const double a = vertices(faces(f, 0), axis);
+    const double b = vertices(faces(f, 1), axis);
+    const double c = vertices(faces(f, 2), axis);
+    box.min[axis] = std::min({a, b, c});
+    box.max[axis] = std::max({a, b, c});
+  }
+  return box;
+}
+
+// Faces whose box is wider than a cell are kept aside and checked against every query; the 95th
+// percentile of the widths keeps those few while a query still looks at no more than 27 cells.
+constexpr double kCellQuantile = 0.95;
+// Cell indices are packed into 21 bits per axis, counted from the first pose's lower corner; moves
+// beyond that range clamp to the border cells, which stays correct (queries clamp alike).
+constexpr std::int64_t kCellsPerAxis = std::int64_t{1} << 21;
+// Below this many moved faces the re-test runs on the calling thread.
+constexpr std::size_t kParallelFaces = 256;
+
+void sort_unique(FacePairs& pairs) {
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+}
+
+
+// Items (faces) bucketed by the grid cell of their box's lower corner: an item whose box is at most a
+// cell wide overlaps a query box only if its lower corner lies within one cell below the query's.
+class Buckets {
+ public:
+  Buckets(double cell, const std::array<double, 3>& origin) : cell_(cell), origin_(origin) {}
+
+  void insert(int item, const Box& box) {
+    if (box.extent() > cell_) {
+      oversized_.push_back(item);
+      return;
+    }
+    cells_[key_of(box)].push_back(item);
+  }
+
+  void erase(int item, const Box& box) {
+    std::vector<int>& bucket = box.extent() > cell_ ? oversized_ : cells_[key_of(box)];
+    const auto found = std::find(bucket.begin(), bucket.end(), item);
+    if (found != bucket.end()) {
+      *found = bucket.back();
+      bucket.pop_back();
+    }
+  }
+
+  // Calls visit(item) for every stored item whose box (boxes[item]) overlaps `box`.
+  template <class Visit>
+  void query(const Box& box, const std::vector<Box>& boxes, Visit&& visit) const {
+    std::array<std::int64_t, 3> low{};
+    std::array<std::int64_t, 3> high{};
+    for (int axis = 0; axis < 3; ++axis) {
+      low[axis] = index(axis, box.min[axis] - cell_);
+      high[axis] = index(axis, box.max[axis]);
+    }
+    for (std::int64_t x = low[0]; x <= high[0]; ++x) {
+      for (std::int64_t y = low[1]; y <= high[1]; ++y) {
+        for (std::int64_t z = low[2]; z <= high[2]; ++z) {
+          const auto found = cells_.find(key(x, y, z));
+          if (found == cells_.end()) continue;
+          for (int item : found->second) {
+            if (boxes[static_cast<size_t>(item)].overlaps(box)) visit(item);
+          }
+        }
+      }
+    }
+    for (int item : oversized_) {
+      if (boxes[static_cast<size_t>(item)].overlaps(box)) visit(item);
+    }
+  }
+
+ private:
+  // Index of `coordinate` along `axis`, clamped to the grid.
+  std::int64_t index(int axis, double coordinate) const {
+    const double steps = std::floor((coordinate - origin_[axis]) / cell_);
+    return static_cast<std::int64_t>(std::clamp(steps, 0.0, static_cast<double>(kCellsPerAxis - 1)));
+  }
+  static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z) {
+    return (static_cast<std::uint64_t>(x) << 42) | (static_cast<std::uint64_t>(y) << 21) | static_cast<std::uint64_t>(z);
+  }
+  std::uint64_t key_of(const Box& box) const {
+    return key(index(0, box.min[0]), index(1, box.min[1]), index(2, box.min[2]));
+  }
+
+  double cell_;
+  std::array<double, 3> origin_;
+  std::unordered_map<std::uint64_t, std::vector<int>> cells_;
+  std::vector<int> oversized_;
+};
+
+// A cell as wide as most faces' boxes, from the corner of the pose's bounding box.
+Buckets buckets_for(const Eigen::MatrixX3d& vertices, const std::vector<Box>& boxes) {
+  std::vector<double> extents(boxes.size());
+  for (size_t f = 0; f < boxes.size(); ++f) extents[f] = boxes[f].extent();
+  double cell = 0.0;
+  if (!extents.empty()) {
+    const auto quantile =
+        extents.begin() + static_cast<std::ptrdiff_t>(kCellQuantile * static_cast<double>(extents.size() - 1));
+    std::nth_element(extents.begin(), quantile, extents.end());
+    cell = *quantile;
+  }
+  if (!(cell > 0.0)) cell = 1.0;  // every face a point: any cell works
+  std::array<double, 3> origin{};
+  for (int axis = 0; axis < 3; ++axis) origin[axis] = vertices.rows() > 0 ? vertices.col(axis).minCoeff() : 0.0;
+  return {cell, origin};
+}
+
+}  // namespace
+
+// The pose last tested, its faces' boxes in buckets, and which faces are degenerate.
+class SelfIntersectionTracker::Grid {
+ public:
+  Grid(const Eigen::MatrixX3d& pose, const Eigen::MatrixX3i& mesh_faces)
+      : vertices(pose),
+        faces(&mesh_faces),
+        faces_of_vertex(vertex_faces(mesh_faces, static_cast<int>(pose.rows()))),
+        boxes(static_cast<size_t>(mesh_faces.rows())),
+        degenerate(static_cast<size_t>(mesh_faces.rows()), 0),
+        buckets(1.0, {}) {
+    const detail::FacePairTest test(vertices, mesh_faces);
+    for (size_t f = 0; f < boxes.size(); ++f) {
+      boxes[f] = face_box(vertices, mesh_faces, static_cast<int>(f));
+      degenerate[f] = test.degenerate(static_cast<int>(f)) ? 1 : 0;
+    }
+    buckets = buckets_for(vertices, boxes);
+    for (size_t f = 0; f < boxes.size(); ++f) buckets.insert(static_cast<int>(f), boxes[f]);
+  }
+
+  // Faces with a corner where `changed` differs from the stored pose, ascending.
+  std::vector<int> moved_faces(const Eigen::MatrixX3d& changed) const {
+    std::vector<int> moved;
+    for (Eigen::Index v = 0; v < vertices.rows(); ++v) {
+      if (changed(v, 0) == vertices(v, 0) && changed(v, 1) == vertices(v, 1) && changed(v, 2) == vertices(v, 2)) continue;
+      for (int f : faces_of_vertex[static_cast<int>(v)]) moved.push_back(f);
+    }
+    std::sort(moved.begin(), moved.end());
+    moved.erase(std::unique(moved.begin(), moved.end()), moved.end());
+    return moved;
+  }
+
+  // The pairs of `changed` that involve a face of `moved` (ascending).
+  FacePairs pairs_of_moved(const Eigen::MatrixX3d& changed, const std::vector<int>& moved) const {
+    const detail::FacePairTest test(changed, *faces);
+    std::vector<Box> moved_boxes(moved.size());
+    std::vector<char> moved_degenerate(moved.size(), 0);
+    for (size_t i = 0; i < moved.size(); ++i) {
+      moved_boxes[i] = face_box(changed, *faces, moved[i]);
+      moved_degenerate[i] = test.degenerate(moved[i]) ? 1 : 0;
+    }
+    // The moved faces among themselves, through buckets of their own new boxes (by position in `moved`).
+    Buckets among_moved = buckets_for(changed, moved_boxes);
+    for (size_t i = 0; i < moved.size(); ++i) among_moved.insert(static_cast<int>(i), moved_boxes[i]);
+
+    tbb::enumerable_thread_specific<FacePairs> found;
+    const auto test_one = [&](size_t i) {
+      const int f = moved[i];
+      FacePairs& out = found.local();
+      if (moved_degenerate[i] != 0) {
+        out.emplace_back(f, f);
+        return;
+      }
+      buckets.query(moved_boxes[i], boxes, [&](int g) {
+        if (degenerate[static_cast<size_t>(g)] != 0 || std::binary_search(moved.begin(), moved.end(), g)) return;
+        if (test.intersect(f, g)) out.emplace_back(std::min(f, g), std::max(f, g));
+      });
+      among_moved.query(moved_boxes[i], moved_boxes, [&](int j) {
+        if (static_cast<size_t>(j) <= i || moved_degenerate[static_cast<size_t>(j)] != 0) return;
+        if (test.intersect(f, moved[static_cast<size_t>(j)])) out.emplace_back(f, moved[static_cast<size_t>(j)]);
+      });
+    };
+    if (moved.size() < kParallelFaces) {
+      for (size_t i = 0; i < moved.size(); ++i) test_one(i);
+    } else {
+      tbb::parallel_for(size_t{0}, moved.size(), test_one);
+    }
+    FacePairs pairs;
+    for (const FacePairs& part : found) pairs.insert(pairs.end(), part.begin(), part.end());
+    return pairs;
+  }
+
+  Eigen::MatrixX3d vertices;
+  const Eigen::MatrixX3i* faces;
+  AdjacencyLists faces_of_vertex;
+  std::vector<Box> boxes;
+  std::vector<char> degenerate;
+  Buckets buckets;
+};
+
+SelfIntersectionTracker::SelfIntersectionTracker(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces)
+    : SelfIntersectionTracker(vertices, faces, self_intersecting_face_pairs(vertices, faces)) {}
+
+SelfIntersectionTracker::SelfIntersectionTracker(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces,
+                                                 FacePairs known_pairs)
+    : pairs_(std::move(known_pairs)) {
+  check_face_indices(faces, static_cast<int>(vertices.rows()));
+  detail::check_finite_vertices(vertices, "SelfIntersectionTracker");
+  grid_ = std::make_unique<Grid>(vertices, faces);
+  sort_unique(pairs_);
+}
+
+SelfIntersectionTracker::~SelfIntersectionTracker() = default;
+SelfIntersectionTracker::SelfIntersectionTracker(const SelfIntersectionTracker& other)
+    : grid_(std::make_unique<Grid>(*other.grid_)), pairs_(other.pairs_) {}
+SelfIntersectionTracker& SelfIntersectionTracker::operator=(const SelfIntersectionTracker& other) {
+  if (this != &other) {
+    grid_ = std::make_unique<Grid>(*other.grid_);
+    pairs_ = other.pairs_;
+  }
+  return *this;
+}
+SelfIntersectionTracker::SelfIntersectionTracker(SelfIntersectionTracker&&) noexcept = default;
+SelfIntersectionTracker& SelfIntersectionTracker::operator=(SelfIntersectionTracker&&) noexcept = default;
+
+const Eigen::MatrixX3d& SelfIntersectionTracker::vertices() const { return grid_->vertices; }
+
+void SelfIntersectionTracker::check_pose(const Eigen::MatrixX3d& changed) const {
+  if (changed.rows() != grid_->vertices.rows()) {
+    throw ArgumentError("SelfIntersectionTracker: a pose of " + std::to_string(changed.rows()) +
+                        " vertices for a mesh of " + std::to_string(grid_->vertices.rows()));
+  }
+  detail::check_finite_vertices(changed, "SelfIntersectionTracker");
+}
+
+FacePairs SelfIntersectionTracker::pairs_if(const Eigen::MatrixX3d& changed) const {
+  check_pose(changed);
+  const std::vector<int> moved = grid_->moved_faces(changed);
+  if (moved.empty()) return pairs_;
+  FacePairs pairs;
+  for (const auto& pair : pairs_) {
+    if (!std::binary_search(moved.begin(), moved.end(), pair.first) &&
+        !std::binary_search(moved.begin(), moved.end(), pair.second)) {
+      pairs.push_back(pair);
+    }
+  }
+  const FacePairs fresh = grid_->pairs_of_moved(changed, moved);
+  pairs.insert(pairs.end(), fresh.begin(), fresh.end());
+  sort_unique(pairs);
+  return pairs;
+}
+
+void SelfIntersectionTracker::update(const Eigen::MatrixX3d& changed) { update(changed, pairs_if(changed)); }
+
+void SelfIntersectionTracker::update(const Eigen::MatrixX3d& changed, FacePairs known) {
+  check_pose(changed);
+  FacePairs pairs = std::move(known);
+  sort_unique(pairs);
+  const std::vector<int> moved = grid_->moved_faces(changed);
+  Grid& grid = *grid_;
+  const detail::FacePairTest test(changed, *grid.faces);
+  for (int f : moved) grid.buckets.erase(f, grid.boxes[static_cast<size_t>(f)]);
+  grid.vertices = changed;
+  for (int f : moved) {
+    grid.boxes[static_cast<size_t>(f)] = face_box(changed, *grid.faces, f);
+    grid.degenerate[static_cast<size_t>(f)] = test.degenerate(f) ? 1 : 0;
+    grid.buckets.insert(f, grid.boxes[static_cast<size_t>(f)]);
+  }
+  pairs_ = std::move(pairs);
+}
+
+}  // namespace posekit
