@@ -1,5 +1,7 @@
 #include "correct/candidate.hpp"
 
+#include "correct/correction_context.hpp"
+
 #include <posekit/correct.hpp>
 #include <posekit/self_intersections.hpp>
 
@@ -29,9 +31,12 @@ void Candidate::accept(Probe probe) {
   new_faces_ = std::move(probe.new_faces);
 }
 
-bool better(const Candidate& a, const Candidate& b, const Eigen::MatrixX3d& target) {
+bool better(const Candidate& a, const Candidate& b, const CorrectionContext& context) {
   if (a.new_face_count() != b.new_face_count()) return a.new_face_count() < b.new_face_count();
-  return median_distance(a.pose(), target) < median_distance(b.pose(), target);
+  const int a_stretched = context.stretch.count(a.pose());
+  const int b_stretched = context.stretch.count(b.pose());
+  if (a_stretched != b_stretched) return a_stretched < b_stretched;
+  return median_distance(a.pose(), context.target) < median_distance(b.pose(), context.target);
 }
 
 double median_distance(const Eigen::MatrixX3d& pose, const Eigen::MatrixX3d& target) {

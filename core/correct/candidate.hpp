@@ -49,9 +49,12 @@ class Candidate {
   std::vector<int> new_faces_;
 };
 
-/// The one rule for two candidates: fewer new intersecting faces, and between equals the smaller
-/// median distance to `target`.
-bool better(const Candidate& a, const Candidate& b, const Eigen::MatrixX3d& target);
+struct CorrectionContext;
+
+/// The one rule for two candidates: fewer new intersecting faces; between equals, fewer faces the
+/// correction stretched (StretchMeasure); between equals again, the smaller median distance to the
+/// context's target.
+bool better(const Candidate& a, const Candidate& b, const CorrectionContext& context);
 
 /// Median distance between corresponding rows of `pose` and `target`.
 double median_distance(const Eigen::MatrixX3d& pose, const Eigen::MatrixX3d& target);

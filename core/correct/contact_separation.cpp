@@ -24,8 +24,9 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 
 // Rounds of pushes and relaxations at most; cat-07 needs seven.
 constexpr int kRounds = 20;
-// A vertex on the surface has winding number 1/2; inside another part, 3/2.
-constexpr double kInsideWinding = 1.0;
+// A vertex that enters another part changes its winding number by one (1/2 on its own surface,
+// 3/2 inside another part of the same orientation).
+constexpr double kEnteredWinding = 0.5;
 // Vertices this many rings from an intersecting face are tested for lying inside another part.
 constexpr int kTestedRings = 2;
 // The surface a part lies in is looked for this many rings around the faces it intersects.
@@ -51,8 +52,12 @@ Kernel::Point_3 point_of(const Eigen::MatrixX3d& vertices, int row) {
 }
 
 // Per vertex of `pose`, the push that takes it out of the part it lies in, for the vertices of the
-// intersecting faces and those near them; zero elsewhere. `pushed` flags the vertices given one.
-Eigen::MatrixX3d contact_pushes(const Eigen::MatrixX3d& pose, const Eigen::MatrixX3i& faces,
+// intersecting faces and those near them; zero elsewhere. `pushed` flags the vertices given one. A
+// vertex lies in another part where its winding number differs by more than a half from its
+// winding number in `reference`: what the reference already has (its own parts passing through
+// each other, folds that turn a patch inside out) is not a contact to separate.
+Eigen::MatrixX3d contact_pushes(const Eigen::MatrixX3d& pose, const Eigen::MatrixX3d& reference,
+                                const Eigen::MatrixX3i& faces,
                                 const std::vector<int>& intersecting,
                                 const std::vector<std::pair<int, int>>& pairs, const AdjacencyLists& neighbours,
                                 const AdjacencyLists& faces_of_vertex, double clearance, std::vector<char>& pushed) {
@@ -62,10 +67,11 @@ Eigen::MatrixX3d contact_pushes(const Eigen::MatrixX3d& pose, const Eigen::Matri
   for (size_t v = 0; v < vertex_count; ++v) {
     if (tested[v] != 0) tested_rows.push_back(static_cast<int>(v));
   }
-  const Eigen::VectorXd winding = winding_numbers(pose, faces, pose(tested_rows, Eigen::all));
+  const Eigen::VectorXd winding = winding_numbers(pose, faces, pose(tested_rows, Eigen::all)) -
+                                  winding_numbers(reference, faces, reference(tested_rows, Eigen::all));
   std::vector<char> inside(vertex_count, 0);
   for (size_t k = 0; k < tested_rows.size(); ++k) {
-    if (winding(static_cast<Eigen::Index>(k)) > kInsideWinding) inside[static_cast<size_t>(tested_rows[k])] = 1;
+    if (std::abs(winding(static_cast<Eigen::Index>(k))) > kEnteredWinding) inside[static_cast<size_t>(tested_rows[k])] = 1;
   }
 
   std::vector<std::vector<int>> partners(static_cast<size_t>(faces.rows()));
@@ -105,14 +111,24 @@ Eigen::MatrixX3d contact_pushes(const Eigen::MatrixX3d& pose, const Eigen::Matri
     for (int v : parts[p]) {
       const Kernel::Point_3 point = point_of(pose, v);
       double depth = std::numeric_limits<double>::infinity();
+      Eigen::Index deepest_behind = -1;
       for (size_t k = 0; k < surface.size(); ++k) {
         const Kernel::Point_3 nearest = project(surface[k], point);
         const Eigen::RowVector3d offset(point.x() - nearest.x(), point.y() - nearest.y(), point.z() - nearest.z());
         if (offset.dot(outward.row(surface_faces[k])) > 0.0) continue;  // in front of that face
-        depth = std::min(depth, offset.norm());
+        if (offset.norm() < depth) {
+          depth = offset.norm();
+          deepest_behind = surface_faces[k];
+        }
       }
       if (!std::isfinite(depth)) continue;
-      push.row(v) = -(kDepthShare * depth + clearance) * normals.row(v);
+      // Back into its own part, against its normal, as two bodies pressed together give way; where
+      // the surface is folded so that this would go deeper into the other part, out through the
+      // face it lies behind.
+      const Eigen::RowVector3d out_of_partner = outward.row(deepest_behind);
+      const Eigen::RowVector3d direction = (-normals.row(v)).dot(out_of_partner) >= 0.0 ? Eigen::RowVector3d(-normals.row(v))
+                                                                                        : out_of_partner;
+      push.row(v) = (kDepthShare * depth + clearance) * direction;
       pushed[static_cast<size_t>(v)] = 1;
     }
   });
@@ -142,6 +158,9 @@ Eigen::MatrixX3d contact_pushes(const Eigen::MatrixX3d& pose, const Eigen::Matri
   return push;
 }
 
+// Rounds without a better pose after which a separation stops: it has settled.
+constexpr int kRoundsWithoutProgress = 3;
+
 class ContactSeparationStage final : public RepairStage {
  public:
   ContactSeparationStage()
@@ -159,55 +178,83 @@ class ContactSeparationStage final : public RepairStage {
   }
 
   std::optional<Candidate> run(const Candidate& /*current*/, CorrectionContext& context, StageReport& report) override {
-    SeparationOutcome outcome = separate_contacts(context);
+    SeparationOutcome outcome =
+        separate_contacts(context, Candidate(context.target, context.faces, context.reference_intersecting,
+                                             context.target_pairs));
     report.details = {{"rounds", outcome.rounds}, {"new_faces", outcome.best.new_face_count()}};
     report.regions = 1;
     report.vertices = static_cast<int>(differing_vertices(outcome.best.pose(), context.target).size());
     report.note = "the target with its own contacts separated (" + std::to_string(outcome.rounds) +
-                  " rounds), nearer the target than the correction";
+                  " rounds), in place of the correction";
+    return std::move(outcome.best);
+  }
+};
+
+// The same pushes on the candidate itself, for the few contacts the stages before left: a face
+// pressed into another (or into one the reference already has intersecting) moves back out of it,
+// and its surroundings follow the candidate's own shape.
+class ContactPushStage final : public RepairStage {
+ public:
+  ContactPushStage()
+      : RepairStage({"contact-push", "push the candidate's remaining contacts apart, its surroundings following"},
+                    kEveryScope) {}
+
+  std::optional<Candidate> run(const Candidate& current, CorrectionContext& context, StageReport& report) override {
+    SeparationOutcome outcome = separate_contacts(context, current);
+    report.details = {{"rounds", outcome.rounds}};
+    report.regions = 1;
+    report.vertices = static_cast<int>(differing_vertices(outcome.best.pose(), current.pose()).size());
+    if (report.vertices == 0) return std::nullopt;
+    report.note = std::to_string(report.vertices) + " vertices pushed out of the parts they lay in (" +
+                  std::to_string(outcome.rounds) + " rounds)";
     return std::move(outcome.best);
   }
 };
 
 }  // namespace
 
-SeparationOutcome separate_contacts(const CorrectionContext& context) {
-  const Eigen::MatrixX3d& target = context.target;
+SeparationOutcome separate_contacts(const CorrectionContext& context, Candidate start) {
   const Eigen::MatrixX3i& faces = context.faces;
   const AdjacencyLists& neighbours = context.neighbours;
   const AdjacencyLists faces_of_vertex = vertex_faces(faces, context.vertex_count());
-  const double mean_edge = edge_lengths(target, edge_map(faces).edges).mean();
+  const Eigen::MatrixX3d rest = start.pose();  // the shape the surroundings keep
+  const double mean_edge = edge_lengths(rest, edge_map(faces).edges).mean();
   RelaxationLimits fold_limits;
   fold_limits.widest_margin = kFoldMargin;
   fold_limits.largest_move = kLargestFoldMove * mean_edge;
 
-  Candidate pose(target, faces, context.reference_intersecting, context.target_pairs);
+  Candidate pose = std::move(start);
   SeparationOutcome out{pose, 0, pose.new_face_count()};
+  int stale_rounds = 0;
   const auto keep_if_better = [&] {
-    if (pose.new_face_count() < out.best.new_face_count()) out.best = pose;
+    if (pose.new_face_count() >= out.best.new_face_count()) return false;
+    out.best = pose;
+    return true;
   };
-  for (int round = 0; round < kRounds && pose.new_face_count() > 0; ++round) {
+  for (int round = 0; round < kRounds && pose.new_face_count() > 0 && stale_rounds < kRoundsWithoutProgress; ++round) {
     out.rounds = round + 1;
     relax_folded_regions(pose, context, fold_limits);
-    keep_if_better();
+    bool progress = keep_if_better();
     if (pose.new_face_count() == 0) break;
 
     std::vector<char> pushed;
-    const Eigen::MatrixX3d push = contact_pushes(pose.pose(), faces, pose.new_faces(), pose.pairs(), neighbours,
-                                                 faces_of_vertex, kClearance * mean_edge, pushed);
+    const Eigen::MatrixX3d push = contact_pushes(pose.pose(), context.reference, faces, pose.new_faces(), pose.pairs(),
+                                                 neighbours, faces_of_vertex, kClearance * mean_edge, pushed);
     std::vector<char> following = within_rings(pushed, neighbours, kFollowingRings);
     for (size_t v = 0; v < following.size(); ++v) {
       if (pushed[v] != 0) following[v] = 0;
     }
     std::optional<Eigen::MatrixX3d> moved =
-        as_rigid_as_possible(target, pose.pose(), faces, following, pushed, pose.pose() + push, neighbours);
+        as_rigid_as_possible(rest, pose.pose(), faces, following, pushed, pose.pose() + push, neighbours);
     if (!moved) break;
     pose.move_to(*moved);
-    keep_if_better();
+    progress = keep_if_better() || progress;
+    stale_rounds = progress ? 0 : stale_rounds + 1;
   }
   return out;
 }
 
 std::unique_ptr<RepairStage> make_contact_separation_stage() { return std::make_unique<ContactSeparationStage>(); }
+std::unique_ptr<RepairStage> make_contact_push_stage() { return std::make_unique<ContactPushStage>(); }
 
 }  // namespace posekit::detail

@@ -14,12 +14,14 @@ namespace posekit::detail {
 struct SeparationOutcome {
   Candidate best;            ///< the pose with the fewest new faces reached
   int rounds = 0;            ///< push and relaxation rounds run
-  int new_faces_before = 0;  ///< new faces of the target
+  int new_faces_before = 0;  ///< new faces of the start
 };
 
-/// Separates the contacts of the context's target that intersect and are not the reference's, with
-/// the context's reference giving the shape a fold relaxes to. Up to twenty rounds; vertices away
-/// from the contacts keep the target's position exactly.
-SeparationOutcome separate_contacts(const CorrectionContext& context);
+/// Separates the contacts of `start` (the context's target, or a candidate) that intersect and are
+/// not the reference's: each round relaxes folds towards the context's reference shape, pushes
+/// every vertex lying inside another part back into its own, and lets the ring around follow
+/// `start`'s own shape as-rigidly-as-possible. Up to twenty rounds, fewer when three in a row bring
+/// nothing better; vertices away from the contacts keep `start`'s positions exactly.
+SeparationOutcome separate_contacts(const CorrectionContext& context, Candidate start);
 
 }  // namespace posekit::detail

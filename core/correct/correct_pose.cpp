@@ -17,12 +17,6 @@ namespace posekit {
 namespace detail {
 namespace {
 
-// An edge this many times as long as in both the reference and the target counts as stretched.
-constexpr double kStretchedFactor = 2.0;
-// Edges shorter than this fraction of the mean edge length in both count as that long: real poses
-// have slivers whose edges open from almost nothing to an ordinary length.
-constexpr double kShortestStretchedEdge = 0.25;
-
 void check_options(const CorrectionOptions& options) {
   const auto require = [](bool condition, const std::string& message) {
     if (!condition) throw ArgumentError(message);
@@ -84,9 +78,9 @@ ResultReport measure_result(const Eigen::MatrixX3d& result, const Eigen::MatrixX
   }
   out.near_intersection_vertices = static_cast<int>(near_rows.size());
   out.median_distance_near_intersections = DriftSummary::of(difference(near_rows, Eigen::all)).median;
-  const Eigen::VectorXd stretch = edge_stretch(
-      result, reference, target, faces, kShortestStretchedEdge * edge_lengths(reference, edge_map(faces).edges).mean());
+  const Eigen::VectorXd stretch = StretchMeasure(reference, target, faces).per_face(result);
   out.stretched_faces = static_cast<int>((stretch.array() > kStretchedFactor).count());
+  out.strongly_stretched_faces = static_cast<int>((stretch.array() > kStronglyStretchedFactor).count());
   out.largest_stretch = stretch.size() > 0 ? stretch.maxCoeff() : 0.0;
   return out;
 }
@@ -96,7 +90,9 @@ ResultReport measure_result(const Eigen::MatrixX3d& result, const Eigen::MatrixX
 CorrectionContext make_context(const Eigen::MatrixX3d& reference, const Eigen::MatrixX3d& target,
                                const Eigen::MatrixX3i& faces, Device& device, const CorrectionOptions& options,
                                CorrectionScope scope, const CorrectionProgress& progress) {
-  CorrectionContext context{reference, target, faces, device, options, scope, {}, {}, {}, {}, 0.0, progress, nullptr, {}};
+  CorrectionContext context{reference, target, faces,  device, options, scope, {},
+                            {},        {},     {},    0.0,     StretchMeasure(reference, target, faces),
+                            progress,  nullptr, {}};
   context.neighbours = vertex_neighbours(faces, static_cast<int>(reference.rows()));
   context.reference_pairs = self_intersecting_face_pairs(reference, faces);
   context.target_pairs = self_intersecting_face_pairs(target, faces);
@@ -108,7 +104,7 @@ CorrectionContext make_context(const Eigen::MatrixX3d& reference, const Eigen::M
 Eigen::MatrixX3d correct_in_scope(const Eigen::MatrixX3d& reference, const Eigen::MatrixX3d& target,
                                   const Eigen::MatrixX3i& faces, Device& device, const CorrectionOptions& options,
                                   CorrectionScope scope, CorrectionReport* report_out,
-                                  const CorrectionProgress& progress) {
+                                  const CorrectionProgress& progress, const std::vector<int>* allowed) {
   const auto start = std::chrono::steady_clock::now();
   check_options(options);
   if (reference.rows() != target.rows()) {
@@ -133,6 +129,7 @@ Eigen::MatrixX3d correct_in_scope(const Eigen::MatrixX3d& reference, const Eigen
   CorrectionOptions scoped = options;
   if (scope != CorrectionScope::whole_pose) scoped.excluded_vertices.clear();
   CorrectionContext context = make_context(reference_n, target_n, faces, device, scoped, scope, progress);
+  if (allowed != nullptr) context.reference_intersecting = *allowed;
   context.field_report = &report.field;
   report.field.seconds.normalization =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - normalization_start).count();

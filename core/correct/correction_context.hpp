@@ -4,6 +4,7 @@
 #pragma once
 
 #include "correct/path_lines.hpp"
+#include "correct/stretch_measure.hpp"
 #include "correct/vertex_classification.hpp"
 
 #include <posekit/correct.hpp>
@@ -47,6 +48,7 @@ struct CorrectionContext {
   FacePairs target_pairs;                    ///< the target's
   std::vector<int> reference_intersecting;   ///< faces of reference_pairs, sorted: never new
   double diagonal = 0;                       ///< the reference's bounding-box diagonal
+  StretchMeasure stretch;                    ///< faces a candidate stretched beyond both poses
   CorrectionProgress progress;
   FieldReport* field_report = nullptr;       ///< filled by the field correction
   std::optional<FieldOutcome> field;         ///< set by the field correction

@@ -36,8 +36,9 @@ class HalfwayStage final : public RepairStage {
     CorrectionReport first_leg;
     const Eigen::MatrixX3d halfway_corrected = correct_in_scope(context.reference, halfway, context.faces, context.device,
                                                                 context.options, CorrectionScope::leg, &first_leg);
-    const Eigen::MatrixX3d corrected = correct_in_scope(halfway_corrected, context.target, context.faces, context.device,
-                                                        context.options, CorrectionScope::leg);
+    const Eigen::MatrixX3d corrected =
+        correct_in_scope(halfway_corrected, context.target, context.faces, context.device, context.options,
+                         CorrectionScope::leg, nullptr, {}, &context.reference_intersecting);
     Probe probe = current.probe(corrected);
     report.details = {{"halfway_new_faces", first_leg.result.new_intersecting_faces}};
     report.regions = 1;

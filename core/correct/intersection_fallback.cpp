@@ -1,12 +1,10 @@
 #include "correct/intersection_fallback.hpp"
 
 #include "correct/repair_stage.hpp"
+#include "correct/target_reproduction.hpp"
 #include "geometry/vertex_regions.hpp"
 
 #include <posekit/topology.hpp>
-
-#include <Eigen/Sparse>
-#include <Eigen/SparseCholesky>
 
 #include <algorithm>
 #include <utility>
@@ -57,48 +55,6 @@ bool overlaps(const Flags& a, const Flags& b) {
   return false;
 }
 
-// `result` with the region given the target's shape, displaced by the harmonic interpolation of
-// the offsets result - target at the vertices around it: the region keeps the target's detail and
-// joins its surroundings smoothly, wherever integration moved them.
-Eigen::MatrixX3d replaced(const Eigen::MatrixX3d& result, const Eigen::MatrixX3d& target, const Flags& region,
-                          const AdjacencyLists& neighbours) {
-  std::vector<int> unknown_of(region.size(), -1);
-  std::vector<int> vertices;
-  for (int v = 0; v < static_cast<int>(region.size()); ++v) {
-    if (!is_set(region, v)) continue;
-    unknown_of[static_cast<size_t>(v)] = static_cast<int>(vertices.size());
-    vertices.push_back(v);
-  }
-  const auto size = static_cast<Eigen::Index>(vertices.size());
-  std::vector<Eigen::Triplet<double>> entries;
-  Eigen::MatrixX3d rhs = Eigen::MatrixX3d::Zero(size, 3);
-  for (Eigen::Index i = 0; i < size; ++i) {
-    const int v = vertices[static_cast<size_t>(i)];
-    entries.emplace_back(i, i, static_cast<double>(neighbours[v].size()));
-    for (int w : neighbours[v]) {
-      const int j = unknown_of[static_cast<size_t>(w)];
-      if (j >= 0) {
-        entries.emplace_back(i, j, -1.0);
-      } else {
-        rhs.row(i) += result.row(w) - target.row(w);
-      }
-    }
-  }
-  Eigen::SparseMatrix<double> laplacian(size, size);
-  laplacian.setFromTriplets(entries.begin(), entries.end());
-  Eigen::MatrixX3d candidate = result;
-  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(laplacian);
-  // A region that is a whole closed component has no surroundings: it is the target's, unmoved.
-  const Eigen::MatrixX3d offsets =
-      solver.info() == Eigen::Success ? Eigen::MatrixX3d(solver.solve(rhs)) : Eigen::MatrixX3d::Zero(size, 3);
-  for (Eigen::Index i = 0; i < size; ++i) {
-    const int v = vertices[static_cast<size_t>(i)];
-    if (offsets.row(i).allFinite()) candidate.row(v) = target.row(v) + offsets.row(i);
-    else candidate.row(v) = target.row(v);
-  }
-  return candidate;
-}
-
 class FallbackStage final : public RepairStage {
  public:
   FallbackStage()
@@ -117,10 +73,10 @@ class FallbackStage final : public RepairStage {
     report.vertices = outcome.sweep.vertices;
     report.details = {{"global_regions", outcome.global_regions}, {"smoothed_regions", outcome.smoothed_regions}};
     if (outcome.sweep.regions == 0) return std::nullopt;
-    report.note = std::to_string(outcome.sweep.regions - outcome.smoothed_regions) + " region(s) taken from the target, " +
-                  std::to_string(outcome.global_regions) + " of them where the tested poses pass a part through another; " +
-                  std::to_string(outcome.smoothed_regions) + " small region(s) smoothed (" +
-                  std::to_string(outcome.sweep.vertices) + " vertices in all)";
+    report.note = std::to_string(outcome.sweep.regions) + " region(s) (" + std::to_string(outcome.sweep.vertices) +
+                  " vertices): " + std::to_string(outcome.sweep.regions - outcome.smoothed_regions) +
+                  " given the target's shape, " + std::to_string(outcome.smoothed_regions) + " small one(s) smoothed; " +
+                  std::to_string(outcome.global_regions) + " where the tested poses pass a part through another";
     return restored;
   }
 };
@@ -163,7 +119,7 @@ FallbackOutcome restore_target_regions(Candidate& candidate, const CorrectionCon
     for (std::size_t k = 0; k < regions.size(); ++k) {
       const bool smoothed = k >= target_shaped;
       if (smoothed && best) break;  // the target's shape already helped
-      Probe probe = current.probe(replaced(result, smoothed ? no_shape : target, regions[k], neighbours));
+      Probe probe = current.probe(with_shape_of(result, smoothed ? no_shape : target, regions[k], neighbours));
       const size_t fewest = best ? best->new_faces.size() : current.new_faces().size();
       if (probe.new_faces.size() >= fewest) continue;
       best = std::move(probe);

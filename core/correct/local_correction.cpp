@@ -45,7 +45,7 @@ class LocalCorrectionStage final : public RepairStage {
     if (corrected.new_face_count() > 0 && current.pose() != context.target) {
       Candidate target(context.target, context.faces, context.reference_intersecting, context.target_pairs);
       const SweepOutcome target_outcome = correct_regions_locally(target, context);
-      if (better(target, corrected, context.target)) {
+      if (better(target, corrected, context)) {
         corrected = std::move(target);
         outcome = target_outcome;
         from_target = true;

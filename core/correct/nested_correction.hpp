@@ -11,10 +11,12 @@ namespace posekit::detail {
 
 /// Corrects `target` against `reference` (#V by 3 each, in any frame) of the #F by 3 `faces` as
 /// correct_pose() does, with the stages of `scope` only. The user's excluded vertices name vertices
-/// of the whole pose and count only in CorrectionScope::whole_pose.
+/// of the whole pose and count only in CorrectionScope::whole_pose. `allowed` (sorted), when given,
+/// replaces the reference's intersecting faces as those that may intersect: a leg that starts from
+/// a corrected pose still owes the whole pose's reference what that pose left.
 Eigen::MatrixX3d correct_in_scope(const Eigen::MatrixX3d& reference, const Eigen::MatrixX3d& target,
                                   const Eigen::MatrixX3i& faces, Device& device, const CorrectionOptions& options,
                                   CorrectionScope scope, CorrectionReport* report = nullptr,
-                                  const CorrectionProgress& progress = {});
+                                  const CorrectionProgress& progress = {}, const std::vector<int>* allowed = nullptr);
 
 }  // namespace posekit::detail

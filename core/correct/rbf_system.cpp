@@ -33,8 +33,8 @@ double largest_magnitude(const Eigen::Ref<const MatrixXd>& matrix) {
 }
 
 // Splits [0, count) into one contiguous piece per worker (at least `grain` wide) and runs
-// work(begin, width) on each. Eigen's own kernels are single-threaded here, so the triangular solves
-// and the product of the update are shared out by right-hand sides; a few wide pieces keep each
+// work(begin, width) on each. Eigen's own kernels are single-threaded here, so the triangular solve
+// and the products of the update are shared out by right-hand sides; a few wide pieces keep each
 // piece efficient.
 template <typename Work>
 void for_each_piece(Index count, Index grain, const Work& work) {
@@ -52,7 +52,7 @@ void for_each_piece(Index count, Index grain, const Work& work) {
                     });
 }
 
-constexpr Index kColumnsPerPiece = 16;
+constexpr Index kRightHandSidesPerPiece = 16;
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -68,72 +68,111 @@ std::string format_ratio(double ratio) {
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
-// BorderedLu
+// BorderedBlockLdlt
+//
+// Bordering A = L D L^T with [[A, B], [B^T, C]] (B = bottom^T):
+//   [[A, B], [B^T, C]] = [[L, 0], [X, I]] [[D, 0], [0, S]] [[L^T, X^T], [0, I]]
+// gives L D X^T = B, so with T = L^-1 B and W = D^-1 T the new rows of L are X = W^T, and the new
+// block of D is the Schur complement S = C - X D X^T = C - T^T W, symmetric like C. Only T needs a
+// triangular solve with the whole of L (n^2 m flops); W costs a solve with each m by m block of D.
+// A bordered LU needs two such solves (L^-1 P B and B^T U^-1), twice the work, for the same
+// Schur complement and hence the same pivots.
 
-BorderedLu::BorderedLu(Index max_size) : max_size_(std::max<Index>(max_size, 0)) {}
+BorderedBlockLdlt::BorderedBlockLdlt(Index max_size) : max_size_(std::max<Index>(max_size, 0)) {}
 
-void BorderedLu::reserve(Index size) {
+void BorderedBlockLdlt::reserve(Index size) {
   const Index capacity = factors_.rows();
   if (size <= capacity) return;
-  // Geometric growth: copying the factors every round would cost O(N^2) per round.
+  // Geometric growth: copying the factors every round would cost O(N^2) per round. Only the block
+  // rows [L_k, D_k] are copied: the part above the diagonal blocks is never used (nor touched, so
+  // its memory is never committed).
   Index grown = std::max(size, capacity + capacity / 2);
   if (max_size_ > 0) grown = std::max(size, std::min(grown, max_size_));
   MatrixXd larger(grown, grown);
-  larger.topLeftCorner(size_, size_) = factors_.topLeftCorner(size_, size_);
+  for (std::size_t k = 0; k < block_starts_.size(); ++k) {
+    const Index start = block_starts_[k];
+    larger.block(start, 0, block_size(k), start + block_size(k)) =
+        factors_.block(start, 0, block_size(k), start + block_size(k));
+  }
   factors_.swap(larger);
 }
 
-double BorderedLu::append(const Eigen::Ref<const MatrixXd>& right,
-                          const Eigen::Ref<const MatrixXd>& bottom,
-                          const Eigen::Ref<const MatrixXd>& corner) {
+Index BorderedBlockLdlt::block_size(std::size_t block) const {
+  const Index end = block + 1 < block_starts_.size() ? block_starts_[block + 1] : size_;
+  return end - block_starts_[block];
+}
+
+void BorderedBlockLdlt::solve_diagonal_block(std::size_t block,
+                                             Eigen::Ref<MatrixXd> block_rows) const {
+  // D_k^-1 = U_k^-1 L_k^-1 P_k.
+  const Index start = block_starts_[block];
+  const Index size = block_rows.rows();
+  const MatrixXd original = block_rows;
+  for (Index j = 0; j < size; ++j) {
+    block_rows.row(j) = original.row(row_order_[static_cast<std::size_t>(start + j)] - start);
+  }
+  const auto lu = factors_.block(start, start, size, size);
+  lu.triangularView<Eigen::UnitLower>().solveInPlace(block_rows);
+  lu.triangularView<Eigen::Upper>().solveInPlace(block_rows);
+}
+
+double BorderedBlockLdlt::append(const Eigen::Ref<const MatrixXd>& bottom,
+                                 const Eigen::Ref<const MatrixXd>& corner) {
   const Index n = size_;
   const Index m = corner.rows();
-  if (corner.cols() != m || right.rows() != n || right.cols() != m || bottom.rows() != m ||
-      bottom.cols() != n) {
-    throw ArgumentError("BorderedLu::append: blocks of " + std::to_string(right.rows()) + "x" +
-                        std::to_string(right.cols()) + ", " + std::to_string(bottom.rows()) + "x" +
-                        std::to_string(bottom.cols()) + " and " + std::to_string(corner.rows()) +
-                        "x" + std::to_string(corner.cols()) + " do not border a " +
-                        std::to_string(n) + "x" + std::to_string(n) + " matrix");
+  if (corner.cols() != m || bottom.rows() != m || bottom.cols() != n) {
+    throw ArgumentError("BorderedBlockLdlt::append: blocks of " + std::to_string(bottom.rows()) +
+                        "x" + std::to_string(bottom.cols()) + " and " +
+                        std::to_string(corner.rows()) + "x" + std::to_string(corner.cols()) +
+                        " do not border a " + std::to_string(n) + "x" + std::to_string(n) +
+                        " matrix");
   }
   if (m == 0) return 1.0;
   reserve(n + m);
-  largest_entry_ = std::max({largest_entry_, largest_magnitude(right), largest_magnitude(bottom),
-                             largest_magnitude(corner)});
 
   auto schur = factors_.block(n, n, m, m);
-  schur = corner;
+  schur.triangularView<Eigen::Lower>() = corner;
+  schur.triangularView<Eigen::StrictlyUpper>().setZero();
+  largest_entry_ = std::max({largest_entry_, largest_magnitude(bottom), largest_magnitude(schur)});
+
+  const std::size_t blocks = block_starts_.size();
   if (n > 0) {
-    const auto lower = factors_.topLeftCorner(n, n).triangularView<Eigen::UnitLower>();
-    const auto upper = factors_.topLeftCorner(n, n).triangularView<Eigen::Upper>();
-    auto t = factors_.block(0, n, n, m);  // T = L^-1 P right
-    auto s = factors_.block(n, 0, m, n);  // S = bottom U^-1
-    for (Index i = 0; i < n; ++i) t.row(i) = right.row(row_order_[static_cast<std::size_t>(i)]);
-    s = bottom;
-    for_each_piece(m, kColumnsPerPiece, [&](Index first, Index count) {
-      lower.solveInPlace(t.middleCols(first, count));
+    // T and W live outside factors_, so that its part above the diagonal blocks stays untouched
+    // and its memory uncommitted.
+    MatrixXd t = bottom.transpose();  // T = L^-1 B
+    MatrixXd w(n, m);                 // W = D^-1 T
+    for_each_piece(m, kRightHandSidesPerPiece, [&](Index first, Index count) {
+      auto t_piece = t.middleCols(first, count);
+      // Block forward substitution: the diagonal blocks of L are identities, so each block row is
+      // one product with the rows of T already solved.
+      for (std::size_t k = 1; k < blocks; ++k) {
+        const Index start = block_starts_[k];
+        t_piece.middleRows(start, block_size(k)).noalias() -=
+            factors_.block(start, 0, block_size(k), start) * t_piece.topRows(start);
+      }
+      auto w_piece = w.middleCols(first, count);
+      w_piece = t_piece;
+      for (std::size_t k = 0; k < blocks; ++k) {
+        solve_diagonal_block(k, w_piece.middleRows(block_starts_[k], block_size(k)));
+      }
     });
-    for_each_piece(m, kColumnsPerPiece, [&](Index first, Index count) {
-      auto rows = s.middleRows(first, count);
-      upper.solveInPlace<Eigen::OnTheRight>(rows);
+    // S = C - T^T W is symmetric: each piece of columns updates the lower triangle only, from its
+    // diagonal down, and the LU below reads the upper triangle as its mirror.
+    for_each_piece(m, kRightHandSidesPerPiece, [&](Index first, Index count) {
+      schur.block(first, first, m - first, count).noalias() -=
+          t.middleCols(first, m - first).transpose() * w.middleCols(first, count);
     });
-    for_each_piece(m, kColumnsPerPiece, [&](Index first, Index count) {
-      schur.middleCols(first, count).noalias() -= s * t.middleCols(first, count);
-    });
+    factors_.block(n, 0, m, n) = w.transpose();  // the new rows of L
   }
 
-  const Eigen::PartialPivLU<MatrixXd> block_lu{MatrixXd(schur)};
+  const Eigen::PartialPivLU<MatrixXd> block_lu{MatrixXd(schur.selfadjointView<Eigen::Lower>())};
   schur = block_lu.matrixLU();
-  // P2 as a row order: row j of P2 X is row new_order(j) of X.
+  // P as a row order: row j of P X is row new_order(j) of X.
   const Eigen::VectorXi new_order =
       block_lu.permutationP() * Eigen::VectorXi::LinSpaced(m, 0, static_cast<int>(m - 1));
-  if (n > 0) {
-    // The new rows of L are P2 S.
-    const MatrixXd s = factors_.block(n, 0, m, n);
-    for (Index j = 0; j < m; ++j) factors_.block(n, 0, m, n).row(j) = s.row(new_order(j));
-  }
   row_order_.reserve(static_cast<std::size_t>(n + m));
   for (Index j = 0; j < m; ++j) row_order_.push_back(n + new_order(j));
+  block_starts_.push_back(n);
   size_ = n + m;
 
   const double smallest_pivot = schur.diagonal().cwiseAbs().minCoeff();
@@ -141,18 +180,54 @@ double BorderedLu::append(const Eigen::Ref<const MatrixXd>& right,
   return smallest_pivot / largest_entry_;
 }
 
-MatrixXd BorderedLu::solve(const Eigen::Ref<const MatrixXd>& rhs) const {
+MatrixXd BorderedBlockLdlt::solve(const Eigen::Ref<const MatrixXd>& rhs) const {
   if (rhs.rows() != size_) {
-    throw ArgumentError("BorderedLu::solve: right-hand side has " + std::to_string(rhs.rows()) +
-                        " rows but the matrix is " + std::to_string(size_) + "x" +
-                        std::to_string(size_));
+    throw ArgumentError("BorderedBlockLdlt::solve: right-hand side has " +
+                        std::to_string(rhs.rows()) + " rows but the matrix is " +
+                        std::to_string(size_) + "x" + std::to_string(size_));
   }
-  MatrixXd x(size_, rhs.cols());
-  for (Index i = 0; i < size_; ++i) x.row(i) = rhs.row(row_order_[static_cast<std::size_t>(i)]);
-  const auto factors = factors_.topLeftCorner(size_, size_);
-  factors.triangularView<Eigen::UnitLower>().solveInPlace(x);
-  factors.triangularView<Eigen::Upper>().solveInPlace(x);
+  MatrixXd x = rhs;
+  const std::size_t blocks = block_starts_.size();
+  for (std::size_t k = 1; k < blocks; ++k) {  // L^-1
+    const Index start = block_starts_[k];
+    x.middleRows(start, block_size(k)).noalias() -=
+        factors_.block(start, 0, block_size(k), start) * x.topRows(start);
+  }
+  for (std::size_t k = 0; k < blocks; ++k) {  // D^-1
+    solve_diagonal_block(k, x.middleRows(block_starts_[k], block_size(k)));
+  }
+  for (std::size_t k = blocks; k-- > 1;) {  // L^-T, from the last block up
+    const Index start = block_starts_[k];
+    x.topRows(start).noalias() -=
+        factors_.block(start, 0, block_size(k), start).transpose() *
+        x.middleRows(start, block_size(k));
+  }
   return x;
+}
+
+MatrixXd BorderedBlockLdlt::unit_lower() const {
+  MatrixXd lower = MatrixXd::Identity(size_, size_);
+  for (std::size_t k = 1; k < block_starts_.size(); ++k) {
+    const Index start = block_starts_[k];
+    lower.block(start, 0, block_size(k), start) = factors_.block(start, 0, block_size(k), start);
+  }
+  return lower;
+}
+
+MatrixXd BorderedBlockLdlt::block_diagonal() const {
+  MatrixXd diagonal = MatrixXd::Zero(size_, size_);
+  for (std::size_t k = 0; k < block_starts_.size(); ++k) {
+    const Index start = block_starts_[k];
+    const Index size = block_size(k);
+    const auto lu = factors_.block(start, start, size, size);
+    const MatrixXd permuted = MatrixXd(lu.triangularView<Eigen::UnitLower>()) *
+                              MatrixXd(lu.triangularView<Eigen::Upper>());
+    auto block = diagonal.block(start, start, size, size);
+    for (Index j = 0; j < size; ++j) {
+      block.row(row_order_[static_cast<std::size_t>(start + j)] - start) = permuted.row(j);
+    }
+  }
+  return diagonal;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -215,7 +290,7 @@ double RbfSystem::extend_blocked(const MatrixXd& block, Index old_count) {
     corner.topRightCorner(added, kRbfPolynomialTerms) = polynomial;
     corner.bottomLeftCorner(kRbfPolynomialTerms, added) = polynomial.transpose();
     corner.bottomRightCorner(kRbfPolynomialTerms, kRbfPolynomialTerms).setZero();
-    return bordered_.append(MatrixXd(0, size), MatrixXd(size, 0), corner);
+    return bordered_.append(MatrixXd(size, 0), corner);
   }
   // The new rows in the unknowns' order [first batch, polynomial, later batches].
   const Index size = old_count + kRbfPolynomialTerms;
@@ -224,8 +299,7 @@ double RbfSystem::extend_blocked(const MatrixXd& block, Index old_count) {
   bottom.middleCols(first_batch_, kRbfPolynomialTerms) = polynomial;
   bottom.rightCols(old_count - first_batch_) =
       block.middleCols(first_batch_, old_count - first_batch_);
-  const MatrixXd right = bottom.transpose();
-  return bordered_.append(right, bottom, block.middleCols(old_count, new_count - old_count));
+  return bordered_.append(bottom, block.middleCols(old_count, new_count - old_count));
 }
 
 double RbfSystem::refactorize_full(const MatrixXd& block) {

@@ -1,52 +1,58 @@
 // The RBF interpolation system [[Phi, Pi], [Pi^T, 0]] [W; U] = [V; 0] over a growing set of centers,
-// and its LU factorization: extended blockwise as centers arrive (the bordering update of the
-// method's section 4.2), or recomputed whole for comparison.
+// and its factorization: a symmetric block LDL^T extended blockwise as centers arrive (the bordering
+// update of the method's section 4.2), or an LU recomputed whole for comparison.
 #pragma once
 
 #include <posekit/device.hpp>
 
 #include <Eigen/Core>
 #include <Eigen/LU>
+#include <cstddef>
 #include <vector>
 
 namespace posekit::detail {
 
-/// LU factorization with partial pivoting, P A = L U, of a square matrix A that grows by bordering:
-/// appending [[A, right], [bottom, corner]] computes only T = L^-1 P right, S = bottom U^-1 and the
-/// LU of the m by m Schur complement corner - S T, whose row pivoting stays inside the new block
-/// (so P is block diagonal). L (unit diagonal, kept below it) and U share one dense matrix whose
-/// capacity grows geometrically.
-class BorderedLu {
+/// Block LDL^T factorization A = L D L^T of a symmetric matrix A that grows by bordering: L is unit
+/// lower block triangular and D block diagonal, one block per append, each kept as an LU with
+/// partial pivoting (the blocks may be indefinite). Appending costs one triangular solve with L.
+class BorderedBlockLdlt {
  public:
   /// max_size: the largest size the matrix will reach (capacity never grows beyond it), or 0 when
   /// not known in advance.
-  explicit BorderedLu(Eigen::Index max_size = 0);
+  explicit BorderedBlockLdlt(Eigen::Index max_size = 0);
 
   /// Current size N of A.
   Eigen::Index size() const { return size_; }
+  /// Number of diagonal blocks of D (one per non-empty append).
+  Eigen::Index block_count() const { return static_cast<Eigen::Index>(block_starts_.size()); }
 
-  /// Extends A (N by N) to [[A, right], [bottom, corner]]: `right` is N by m, `bottom` m by N and
-  /// `corner` m by m. Returns the smallest |pivot| of the new block divided by the largest |entry|
-  /// of the whole matrix so far (0 when a pivot is exactly zero; such a factorization must not be
-  /// used for solving).
-  double append(const Eigen::Ref<const Eigen::MatrixXd>& right,
-                const Eigen::Ref<const Eigen::MatrixXd>& bottom,
+  /// Extends A (N by N) to [[A, bottom^T], [bottom, corner]]: `bottom` is m by N and `corner` is
+  /// m by m and symmetric (only its lower triangle is read). Returns the smallest |pivot| of the new
+  /// block of D divided by the largest |entry| of the whole matrix so far (0 when a pivot is exactly
+  /// zero; such a factorization must not be used for solving).
+  double append(const Eigen::Ref<const Eigen::MatrixXd>& bottom,
                 const Eigen::Ref<const Eigen::MatrixXd>& corner);
 
   /// Solves A X = rhs for N by k `rhs`.
   Eigen::MatrixXd solve(const Eigen::Ref<const Eigen::MatrixXd>& rhs) const;
 
-  /// The factors packed in one N by N matrix: strictly lower part L (unit diagonal), upper part U.
-  Eigen::Block<const Eigen::MatrixXd> packed_factors() const {
-    return factors_.topLeftCorner(size_, size_);
-  }
-  /// Row i of L U is row row_order()[i] of A.
-  const std::vector<Eigen::Index>& row_order() const { return row_order_; }
+  /// The factors as dense N by N matrices, for checks (each call copies O(N^2) entries).
+  Eigen::MatrixXd unit_lower() const;
+  Eigen::MatrixXd block_diagonal() const;
 
  private:
   void reserve(Eigen::Index size);
+  Eigen::Index block_size(std::size_t block) const;
+  // Overwrites `block_rows` (the rows of diagonal block `block`, any number of columns) with
+  // D_block^-1 times them.
+  void solve_diagonal_block(std::size_t block, Eigen::Ref<Eigen::MatrixXd> block_rows) const;
 
-  Eigen::MatrixXd factors_;  // capacity by capacity; the top-left size_ by size_ block is in use
+  // capacity by capacity, stored by block rows: block row k holds L's blocks left of the diagonal
+  // and the packed LU of D_k (unit lower L_k, upper U_k, with the row order below) on it. The part
+  // above the diagonal blocks is unused.
+  Eigen::MatrixXd factors_;
+  std::vector<Eigen::Index> block_starts_;  // first row of each diagonal block
+  // Row i of L_k U_k is row row_order_[i] of D_k (rows numbered as in A; pivoting stays in a block).
   std::vector<Eigen::Index> row_order_;
   Eigen::Index size_ = 0;
   Eigen::Index max_size_ = 0;
@@ -85,7 +91,7 @@ class RbfSystem {
   bool blocked_update() const { return blocked_; }
 
  private:
-  // Both return the smallest relative pivot of what they factorized (see BorderedLu::append).
+  // Both return the smallest relative pivot of what they factorized (see BorderedBlockLdlt::append).
   // block: the new centers' rows [phi to every center..., 15 polynomial terms].
   double extend_blocked(const Eigen::MatrixXd& block, Eigen::Index old_count);
   // block: every center's row [phi to every center..., 15 polynomial terms].
@@ -96,7 +102,7 @@ class RbfSystem {
   Eigen::Index max_centers_;
   Points4 centers_;
   Eigen::Index first_batch_ = 0;  // blocked mode: the polynomial unknowns follow this many centers
-  BorderedLu bordered_;                      // blocked mode
+  BorderedBlockLdlt bordered_;                 // blocked mode
   Eigen::PartialPivLU<Eigen::MatrixXd> full_;  // full mode
 };
 

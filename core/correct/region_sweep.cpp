@@ -5,6 +5,13 @@
 #include <algorithm>
 
 namespace posekit::detail {
+SweepGoal fewer_new_faces() {
+  return {[](const Candidate& candidate) { return candidate.new_faces(); },
+          [](const Probe& proposal, const Candidate& current) {
+            return proposal.new_faces.size() < current.new_faces().size();
+          }};
+}
+
 SweepOutcome sweep_regions(Candidate& candidate, const CorrectionContext& context, const RegionSweep& sweep,
                            const RegionRepair& repair) {
   const auto vertex_count = static_cast<size_t>(context.vertex_count());
@@ -13,28 +20,30 @@ SweepOutcome sweep_regions(Candidate& candidate, const CorrectionContext& contex
   for (int round = 0; round < sweep.rounds; ++round) {
     const int kept_before = outcome.regions;
     for (const int rings : sweep.seed_rings) {
-      if (candidate.new_face_count() == 0) break;
+      std::vector<int> to_mend = sweep.goal.faces_to_mend(candidate);
+      if (to_mend.empty()) break;
       const std::vector<char> near =
-          within_rings(face_vertices(candidate.new_faces(), context.faces, vertex_count), context.neighbours, rings);
+          within_rings(face_vertices(to_mend, context.faces, vertex_count), context.neighbours, rings);
       std::vector<std::vector<int>> regions = connected_sets(near, context.neighbours);
       if (sweep.link_intersecting) {
         regions = join_intersecting(regions, candidate.pairs(), context.faces);
       }
       for (std::vector<int>& region : regions) {
-        if (candidate.new_face_count() == 0) break;
+        if (to_mend.empty()) break;
         if (static_cast<double>(region.size()) > sweep.largest_fraction * static_cast<double>(vertex_count)) continue;
         std::sort(region.begin(), region.end());
         std::vector<char> inside(vertex_count, 0);
         for (int v : region) inside[static_cast<size_t>(v)] = 1;
-        if (!touches(inside, candidate.new_faces(), context.faces)) continue;
+        if (!touches(inside, to_mend, context.faces)) continue;
         std::optional<Probe> proposal = repair(region, candidate);
-        if (!proposal || proposal->new_faces.size() >= candidate.new_faces().size()) continue;
+        if (!proposal || !sweep.goal.improves(*proposal, candidate)) continue;
         for (int v : differing_vertices(proposal->pose, candidate.pose())) moved[static_cast<size_t>(v)] = 1;
         candidate.accept(std::move(*proposal));
         ++outcome.regions;
+        to_mend = sweep.goal.faces_to_mend(candidate);
       }
     }
-    if (outcome.regions == kept_before || candidate.new_face_count() == 0) break;
+    if (outcome.regions == kept_before || sweep.goal.faces_to_mend(candidate).empty()) break;
   }
   outcome.vertices = static_cast<int>(std::count(moved.begin(), moved.end(), 1));
   return outcome;

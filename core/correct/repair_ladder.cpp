@@ -16,19 +16,25 @@ bool RepairStage::wanted(const Candidate& current, const CorrectionContext& /*co
   return current.new_face_count() > 0;
 }
 
-// Field first; then the stages that change least (a region restored, moved back in time, corrected
-// anew on its own, relaxed); then the costly ones that start again (two legs); then the target
-// given back wherever nothing is wrong, and last the separation of the target's own contacts,
+// Field first; then the stages that change least (a region restored, moved back in time, the
+// reference's slid intersections given back, corrected anew on its own and what that leaves moved
+// back again, relaxed, the reference's intersections again, pushed apart); then the costly ones that start again (two legs); then the target
+// given back wherever nothing is wrong, stretched regions given its shape, and last the separation of the target's own contacts,
 // which replaces the correction only where that is better.
 RepairLadder default_repair_ladder() {
   RepairLadder ladder;
   ladder.push_back(make_field_stage());
   ladder.push_back(make_fallback_stage());
   ladder.push_back(make_rollback_stage());
+  ladder.push_back(make_reference_zones_stage());
   ladder.push_back(make_local_correction_stage());
+  ladder.push_back(make_rollback_stage());
   ladder.push_back(make_relaxation_stage());
+  ladder.push_back(make_reference_zones_stage());
+  ladder.push_back(make_contact_push_stage());
   ladder.push_back(make_halfway_stage());
   ladder.push_back(make_final_reproduction_stage());
+  ladder.push_back(make_stretch_relief_stage());
   ladder.push_back(make_contact_separation_stage());
   return ladder;
 }
@@ -51,7 +57,7 @@ Candidate run_repair_ladder(const RepairLadder& ladder, Candidate start, Correct
       context.report_progress(report.name, 0.0);
       report.ran = true;
       std::optional<Candidate> proposal = stage->run(current, context, report);
-      if (proposal && better(*proposal, current, context.target)) {
+      if (proposal && better(*proposal, current, context)) {
         current = std::move(*proposal);
         report.kept = true;
       }

@@ -44,10 +44,13 @@ using RepairLadder = std::vector<std::unique_ptr<RepairStage>>;
 std::unique_ptr<RepairStage> make_field_stage();                // field_correction.cpp
 std::unique_ptr<RepairStage> make_fallback_stage();             // intersection_fallback.cpp
 std::unique_ptr<RepairStage> make_rollback_stage();             // time_rollback.cpp
+std::unique_ptr<RepairStage> make_reference_zones_stage();      // reference_zones.cpp
 std::unique_ptr<RepairStage> make_local_correction_stage();     // local_correction.cpp
 std::unique_ptr<RepairStage> make_relaxation_stage();           // region_relaxation.cpp
 std::unique_ptr<RepairStage> make_halfway_stage();              // halfway_legs.cpp
 std::unique_ptr<RepairStage> make_final_reproduction_stage();   // target_reproduction.cpp
+std::unique_ptr<RepairStage> make_stretch_relief_stage();       // stretch_relief.cpp
+std::unique_ptr<RepairStage> make_contact_push_stage();         // contact_separation.cpp
 std::unique_ptr<RepairStage> make_contact_separation_stage();   // contact_separation.cpp
 
 }  // namespace posekit::detail

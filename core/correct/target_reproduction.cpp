@@ -6,6 +6,9 @@
 #include <posekit/error.hpp>
 #include <posekit/self_intersections.hpp>
 
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+
 #include <iterator>
 
 #include <algorithm>
@@ -47,6 +50,43 @@ Eigen::MatrixX3d blend_towards_target(const Eigen::MatrixX3d& integrated, const 
   Eigen::MatrixX3d blended = integrated - target;
   blended.array().colwise() *= weights.array();
   return blended + target;
+}
+
+Eigen::MatrixX3d with_shape_of(const Eigen::MatrixX3d& pose, const Eigen::MatrixX3d& shape,
+                               const std::vector<char>& region, const AdjacencyLists& neighbours) {
+  std::vector<int> unknown_of(region.size(), -1);
+  std::vector<int> vertices;
+  for (int v = 0; v < static_cast<int>(region.size()); ++v) {
+    if (region[static_cast<size_t>(v)] == 0) continue;
+    unknown_of[static_cast<size_t>(v)] = static_cast<int>(vertices.size());
+    vertices.push_back(v);
+  }
+  const auto size = static_cast<Eigen::Index>(vertices.size());
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::MatrixX3d rhs = Eigen::MatrixX3d::Zero(size, 3);
+  for (Eigen::Index i = 0; i < size; ++i) {
+    const int v = vertices[static_cast<size_t>(i)];
+    entries.emplace_back(i, i, static_cast<double>(neighbours[v].size()));
+    for (int w : neighbours[v]) {
+      const int j = unknown_of[static_cast<size_t>(w)];
+      if (j >= 0) {
+        entries.emplace_back(i, j, -1.0);
+      } else {
+        rhs.row(i) += pose.row(w) - shape.row(w);
+      }
+    }
+  }
+  Eigen::SparseMatrix<double> laplacian(size, size);
+  laplacian.setFromTriplets(entries.begin(), entries.end());
+  Eigen::MatrixX3d reshaped = pose;
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(laplacian);
+  const Eigen::MatrixX3d offsets =
+      solver.info() == Eigen::Success ? Eigen::MatrixX3d(solver.solve(rhs)) : Eigen::MatrixX3d::Zero(size, 3);
+  for (Eigen::Index i = 0; i < size; ++i) {
+    const int v = vertices[static_cast<size_t>(i)];
+    reshaped.row(v) = shape.row(v) + (offsets.row(i).allFinite() ? Eigen::RowVector3d(offsets.row(i)) : Eigen::RowVector3d::Zero());
+  }
+  return reshaped;
 }
 
 Reproduction reproduce_target(const Eigen::MatrixX3d& result, const Eigen::MatrixX3d& target, std::vector<char> kept,

@@ -26,6 +26,13 @@ Eigen::VectorXd correction_weights(const std::vector<char>& corrected, const Adj
 Eigen::MatrixX3d blend_towards_target(const Eigen::MatrixX3d& integrated, const Eigen::MatrixX3d& target,
                                       const Eigen::VectorXd& weights);
 
+/// `pose` (#V by 3) with the flagged `region` (one flag per vertex) given the shape of `shape` (#V by
+/// 3), displaced by the harmonic interpolation of the offsets pose - shape at the vertices around
+/// it: the region keeps the shape's detail and joins its surroundings smoothly, wherever they are.
+/// A region that is a whole closed component (no surroundings) takes the shape unmoved.
+Eigen::MatrixX3d with_shape_of(const Eigen::MatrixX3d& pose, const Eigen::MatrixX3d& shape,
+                               const std::vector<char>& region, const AdjacencyLists& neighbours);
+
 /// The faces of a pose that intersect and are not the reference's (sorted).
 using FaceTest = std::function<std::vector<int>(const Eigen::MatrixX3d&)>;
 

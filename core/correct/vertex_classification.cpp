@@ -44,8 +44,18 @@ VertexClassification classify_vertices(const std::vector<FacePairs>& pairs_per_p
   grow(excluded_by_target);
   for (std::vector<char>& flags : result.unconstrained_in_frame) grow(flags);
   result.near_intersections = excluded;
+  // A vertex of a face that intersects somewhere on the way and not in the reference stays free even
+  // where it also belongs to one of the reference's intersecting faces: pinned, it would carry the
+  // reference's intersection onto its new face wherever the target slides it there.
+  std::vector<char> on_new_face(static_cast<size_t>(vertex_count), 0);
+  for (const FacePairs& pairs : frames) {
+    for (int face : new_intersecting_faces(faces_in_pairs(pairs), result.reference_intersecting)) {
+      for (int corner = 0; corner < 3; ++corner) on_new_face[static_cast<size_t>(faces(face, corner))] = 1;
+    }
+  }
   for (int face : result.reference_intersecting) {
     for (int corner = 0; corner < 3; ++corner) {
+      if (on_new_face[static_cast<size_t>(faces(face, corner))]) continue;
       excluded[static_cast<size_t>(faces(face, corner))] = 0;
       for (std::vector<char>& flags : result.unconstrained_in_frame) flags[static_cast<size_t>(faces(face, corner))] = 0;
     }

@@ -51,6 +51,8 @@ constexpr double kCellQuantile = 0.95;
 constexpr std::int64_t kCellsPerAxis = std::int64_t{1} << 21;
 // Below this many moved faces the re-test runs on the calling thread.
 constexpr std::size_t kParallelFaces = 256;
+// Beyond this fraction of the faces moved, testing the pose whole is cheaper.
+constexpr double kWholeTestFraction = 0.25;
 
 void sort_unique(FacePairs& pairs) {
   std::sort(pairs.begin(), pairs.end());
@@ -81,29 +83,37 @@ class Buckets {
     }
   }
 
-  // Calls visit(item) for every stored item whose box (boxes[item]) overlaps `box`.
+  // Calls visit(item) for every stored item whose box (boxes[item]) overlaps `box`. A box wider than
+  // the occupied cells are many (a face stretched across the pose) visits those cells instead of
+  // its range.
   template <class Visit>
   void query(const Box& box, const std::vector<Box>& boxes, Visit&& visit) const {
     std::array<std::int64_t, 3> low{};
     std::array<std::int64_t, 3> high{};
+    double range_cells = 1.0;
     for (int axis = 0; axis < 3; ++axis) {
       low[axis] = index(axis, box.min[axis] - cell_);
       high[axis] = index(axis, box.max[axis]);
+      range_cells *= static_cast<double>(high[axis] - low[axis] + 1);
     }
-    for (std::int64_t x = low[0]; x <= high[0]; ++x) {
-      for (std::int64_t y = low[1]; y <= high[1]; ++y) {
-        for (std::int64_t z = low[2]; z <= high[2]; ++z) {
-          const auto found = cells_.find(key(x, y, z));
-          if (found == cells_.end()) continue;
-          for (int item : found->second) {
-            if (boxes[static_cast<size_t>(item)].overlaps(box)) visit(item);
+    const auto visit_bucket = [&](const std::vector<int>& bucket) {
+      for (int item : bucket) {
+        if (boxes[static_cast<size_t>(item)].overlaps(box)) visit(item);
+      }
+    };
+    if (range_cells > static_cast<double>(cells_.size())) {
+      for (const auto& [key, bucket] : cells_) visit_bucket(bucket);
+    } else {
+      for (std::int64_t x = low[0]; x <= high[0]; ++x) {
+        for (std::int64_t y = low[1]; y <= high[1]; ++y) {
+          for (std::int64_t z = low[2]; z <= high[2]; ++z) {
+            const auto found = cells_.find(key(x, y, z));
+            if (found != cells_.end()) visit_bucket(found->second);
           }
         }
       }
     }
-    for (int item : oversized_) {
-      if (boxes[static_cast<size_t>(item)].overlaps(box)) visit(item);
-    }
+    visit_bucket(oversized_);
   }
 
  private:
@@ -262,6 +272,9 @@ FacePairs SelfIntersectionTracker::pairs_if(const Eigen::MatrixX3d& changed) con
   check_pose(changed);
   const std::vector<int> moved = grid_->moved_faces(changed);
   if (moved.empty()) return pairs_;
+  if (static_cast<double>(moved.size()) > kWholeTestFraction * static_cast<double>(grid_->boxes.size())) {
+    return self_intersecting_face_pairs(changed, *grid_->faces);
+  }
   FacePairs pairs;
   for (const auto& pair : pairs_) {
     if (!std::binary_search(moved.begin(), moved.end(), pair.first) &&
@@ -282,6 +295,11 @@ void SelfIntersectionTracker::update(const Eigen::MatrixX3d& changed, FacePairs 
   FacePairs pairs = std::move(known);
   sort_unique(pairs);
   const std::vector<int> moved = grid_->moved_faces(changed);
+  if (static_cast<double>(moved.size()) > kWholeTestFraction * static_cast<double>(grid_->boxes.size())) {
+    grid_ = std::make_unique<Grid>(changed, *grid_->faces);  // cells sized for the new pose
+    pairs_ = std::move(pairs);
+    return;
+  }
   Grid& grid = *grid_;
   const detail::FacePairTest test(changed, *grid.faces);
   for (int f : moved) grid.buckets.erase(f, grid.boxes[static_cast<size_t>(f)]);

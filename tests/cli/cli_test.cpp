@@ -218,19 +218,29 @@ TEST_F(CorrectCommand, CorrectsTheDemoArmAndWritesItsReport) {
   for (const char* step : {"key_frames", "classification", "fitting", "integration", "reproduction"}) {
     EXPECT_TRUE(field.at("seconds").contains(step)) << step;
   }
-  // One entry per stage of the ladder, in its order, and one progress line per stage that ran.
+  // One entry per stage of the ladder, in its order (a stage may run twice), and one progress line
+  // per stage that ran.
   const nlohmann::json& stages = report.at("stages");
-  ASSERT_EQ(stages.size(), repair_stages().size());
+  ASSERT_GE(stages.size(), repair_stages().size());
+  size_t listed = 0;
   for (size_t k = 0; k < stages.size(); ++k) {
     const nlohmann::json& stage = stages[k];
-    EXPECT_EQ(stage.at("name"), repair_stages()[k].name);
+    if (listed < repair_stages().size() && stage.at("name") == repair_stages()[listed].name) ++listed;
     for (const char* key : {"ran", "skipped", "kept", "new_faces_before", "new_faces_after", "regions", "vertices",
                             "seconds", "note", "details"}) {
       EXPECT_TRUE(stage.contains(key)) << stage.at("name") << " " << key;
     }
-    const bool line = result.err.find("correct: " + stage.at("name").get<std::string>() + " (") != std::string::npos;
-    EXPECT_EQ(line, stage.at("ran").get<bool>()) << stage.at("name") << "\n" << result.err;
   }
+  // As many progress lines of each stage as it ran.
+  for (const RepairStageInfo& info : repair_stages()) {
+    int runs = 0;
+    for (const nlohmann::json& stage : stages) runs += stage.at("name") == info.name && stage.at("ran").get<bool>() ? 1 : 0;
+    int lines = 0;
+    const std::string line = "correct: " + info.name + " (";
+    for (size_t at = result.err.find(line); at != std::string::npos; at = result.err.find(line, at + 1)) ++lines;
+    EXPECT_EQ(lines, runs) << info.name << "\n" << result.err;
+  }
+  EXPECT_EQ(listed, repair_stages().size());  // every stage of the list, in its order
   EXPECT_TRUE(stages[0].at("ran").get<bool>());
   EXPECT_TRUE(report.at("seconds").is_number());
   const CommandResult check = run_posekit({"check", output_, "--reference", rest_, "--json"});

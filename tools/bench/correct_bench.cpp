@@ -133,7 +133,8 @@ void BM_SeparateContacts(benchmark::State& state) {
   int before = 0;
   int after = 0;
   for (auto _ : state) {
-    const detail::SeparationOutcome separation = detail::separate_contacts(context);
+    const detail::SeparationOutcome separation = detail::separate_contacts(
+        context, detail::Candidate(context.target, context.faces, context.reference_intersecting, context.target_pairs));
     rounds = separation.rounds;
     before = separation.new_faces_before;
     after = separation.best.new_face_count();

@@ -2,7 +2,7 @@
 // 13 times, 65,000 constraints, about 2,700 centers, about 20 rounds of 128 centers).
 //
 // BM_BlockedUpdate/N: one round's blocked update, N centers -> N + 128 (assembly of the new rows on
-//   the device, T = L^-1 P C, S = C^T U^-1, the Schur complement and its LU).
+//   the device, T = L^-1 C, W = D^-1 T, the Schur complement and its LU: the bordered block LDL^T).
 // BM_FullRefactorization/N: what a round costs without it: assembling and factorizing the whole
 //   system of N + 128 centers.
 // BM_Fit/blocked, BM_Fit/full: a whole fit of the synthetic lion-sized problem; counters give the

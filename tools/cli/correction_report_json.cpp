@@ -95,7 +95,10 @@ nlohmann::json result_json(const ResultReport& result) {
             {"median_near_intersections", result.median_distance_near_intersections},
             {"bounding_box_diagonal", result.bounding_box_diagonal}}},
           {"changed_vertices", result.changed_vertices},
-          {"distortion", {{"stretched_faces", result.stretched_faces}, {"largest_stretch", result.largest_stretch}}}};
+          {"distortion",
+           {{"stretched_faces", result.stretched_faces},
+            {"strongly_stretched_faces", result.strongly_stretched_faces},
+            {"largest_stretch", result.largest_stretch}}}};
 }
 
 }  // namespace

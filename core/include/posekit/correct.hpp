@@ -181,6 +181,7 @@ struct ResultReport {
   /// (edge_stretch; edges shorter than a quarter of the mean count as that long): where the
   /// correction stretched the surface rather than moved it.
   int stretched_faces = 0;
+  int strongly_stretched_faces = 0; ///< of those, with an edge more than three times as long
   double largest_stretch = 0;       ///< the largest edge_stretch of a face
 };
 

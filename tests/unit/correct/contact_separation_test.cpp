@@ -34,7 +34,7 @@ TEST(ContactSeparation, SeparatesOverlappingPartsAndLeavesTheRestAlone) {
   const auto overlapping = static_cast<int>(self_intersecting_faces(pressed.vertices, pressed.faces).size());
   ASSERT_GT(overlapping, 0);
   const testing::StageFixture fixture(apart.vertices, pressed.vertices, apart.faces);
-  const SeparationOutcome separation = separate_contacts(fixture.context);
+  const SeparationOutcome separation = separate_contacts(fixture.context, fixture.candidate(fixture.target));
   EXPECT_EQ(separation.new_faces_before, overlapping);
   EXPECT_EQ(separation.best.new_face_count(), 0);
   EXPECT_GT(separation.rounds, 0);
@@ -53,7 +53,7 @@ TEST(ContactSeparation, SeparatesOverlappingPartsAndLeavesTheRestAlone) {
 TEST(ContactSeparation, LeavesTheReferencesOwnIntersectionsAlone) {
   const Mesh pressed = two_spheres(1.6);
   const testing::StageFixture fixture(pressed.vertices, pressed.vertices, pressed.faces);
-  const SeparationOutcome separation = separate_contacts(fixture.context);
+  const SeparationOutcome separation = separate_contacts(fixture.context, fixture.candidate(fixture.target));
   EXPECT_EQ(separation.new_faces_before, 0);
   EXPECT_EQ(separation.rounds, 0);
   EXPECT_EQ(separation.best.pose(), pressed.vertices);

@@ -1,4 +1,4 @@
-// The RBF saddle-point system and its factorization: the bordered LU against a direct
+// The RBF saddle-point system and its factorization: the bordered block LDL^T against a direct
 // factorization, blocked against full refactorization, interpolation of the centers, exact
 // reproduction of quadratic polynomials, and singular systems reported as errors.
 #include "correct/rbf_system.hpp"
@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <random>
@@ -60,53 +61,90 @@ void add_in_batches(detail::RbfSystem& system, const Points4& points,
   ASSERT_EQ(first, points.rows());
 }
 
-TEST(BorderedLu, MatchesDirectSolveWhenGrownInUnevenBlocks) {
-  std::mt19937_64 engine(11);
+// A random symmetric indefinite matrix whose small diagonal forces row exchanges inside the blocks
+// of D.
+MatrixXd random_symmetric(Index size, std::uint64_t seed) {
+  std::mt19937_64 engine(seed);
   std::normal_distribution<double> normal;
-  const Index size = 7 + 5 + 13 + 1 + 30;
   MatrixXd matrix(size, size);
   for (Index i = 0; i < matrix.size(); ++i) matrix.data()[i] = normal(engine);
-  // Small leading entries of each block force row exchanges inside the blocks.
+  matrix = (matrix + matrix.transpose()).eval();
   matrix.diagonal() *= 1e-3;
-
-  detail::BorderedLu lu(size);
-  Index n = 0;
-  for (const Index m : {7, 5, 13, 1, 30}) {
-    const double pivot = lu.append(matrix.block(0, n, n, m), matrix.block(n, 0, m, n),
-                                   matrix.block(n, n, m, m));
-    EXPECT_GT(pivot, 0.0);
-    n += m;
-    ASSERT_EQ(lu.size(), n);
-
-    // P A = L U with the block-diagonal row order.
-    const MatrixXd packed = lu.packed_factors();
-    const MatrixXd lower = packed.triangularView<Eigen::UnitLower>();
-    const MatrixXd upper = packed.triangularView<Eigen::Upper>();
-    MatrixXd permuted(n, n);
-    for (Index i = 0; i < n; ++i) permuted.row(i) = matrix.topLeftCorner(n, n).row(lu.row_order()[i]);
-    EXPECT_LT(relative_difference(lower * upper, permuted), 1e-12) << "after " << n << " rows";
-
-    const MatrixXd rhs = MatrixXd::Random(n, 3);
-    const MatrixXd expected = matrix.topLeftCorner(n, n).partialPivLu().solve(rhs);
-    EXPECT_LT(relative_difference(lu.solve(rhs), expected), 1e-10) << "after " << n << " rows";
-  }
+  return matrix;
 }
 
-TEST(BorderedLu, ReportsAZeroPivotForARepeatedRow) {
-  MatrixXd matrix = MatrixXd::Random(12, 12);
+// Bordering in uneven steps gives the block LDL^T of the whole matrix with those blocks: L unit
+// lower block triangular, D block diagonal, L D L^T = A, and each block of D the Schur complement
+// of the rows before it (computed here with a dense solver); solves match a dense solver.
+TEST(BorderedBlockLdlt, BorderingInStepsFactorizesTheWholeMatrix) {
+  const std::vector<Index> blocks = {7, 5, 13, 1, 30};
+  const Index size = 7 + 5 + 13 + 1 + 30;
+  const MatrixXd matrix = random_symmetric(size, 11);
+
+  detail::BorderedBlockLdlt ldlt(size);
+  Index n = 0;
+  for (const Index m : blocks) {
+    const double pivot = ldlt.append(matrix.block(n, 0, m, n), matrix.block(n, n, m, m));
+    EXPECT_GT(pivot, 0.0);
+    n += m;
+    ASSERT_EQ(ldlt.size(), n);
+
+    const MatrixXd lower = ldlt.unit_lower();
+    const MatrixXd diagonal = ldlt.block_diagonal();
+    const MatrixXd leading = matrix.topLeftCorner(n, n);
+    EXPECT_LT(relative_difference(lower * diagonal * lower.transpose(), leading), 1e-12)
+        << "after " << n << " rows";
+    Index start = 0;
+    for (std::size_t k = 0; start < n; start += blocks[k], ++k) {
+      const Index rows = blocks[k];
+      EXPECT_TRUE((lower.block(start, start, rows, n - start) ==
+                   MatrixXd::Identity(rows, n - start)))
+          << "L is not unit lower block triangular at block " << k;
+      EXPECT_TRUE(diagonal.block(start, start + rows, rows, n - start - rows).isZero(0.0))
+          << "D is not block diagonal at block " << k;
+      const MatrixXd before = matrix.topLeftCorner(start, start);
+      const MatrixXd coupling = matrix.block(0, start, start, rows);
+      MatrixXd schur = matrix.block(start, start, rows, rows);
+      if (start > 0) schur -= coupling.transpose() * before.partialPivLu().solve(coupling);
+      EXPECT_LT(relative_difference(diagonal.block(start, start, rows, rows), schur), 1e-10)
+          << "block " << k << " of D after " << n << " rows";
+    }
+
+    const MatrixXd rhs = MatrixXd::Random(n, 3);
+    const MatrixXd expected = leading.partialPivLu().solve(rhs);
+    EXPECT_LT(relative_difference(ldlt.solve(rhs), expected), 1e-10) << "after " << n << " rows";
+  }
+  EXPECT_EQ(ldlt.block_count(), static_cast<Index>(blocks.size()));
+}
+
+// A first block with a zero corner, like the polynomial rows of the RBF system, needs the pivoting
+// inside the block.
+TEST(BorderedBlockLdlt, FactorizesASaddlePointFirstBlock) {
+  MatrixXd matrix = random_symmetric(40, 13);
+  matrix.block(20, 20, 5, 5).setZero();
+  detail::BorderedBlockLdlt ldlt;
+  EXPECT_GT(ldlt.append(MatrixXd(25, 0), matrix.topLeftCorner(25, 25)), 1e-8);
+  EXPECT_GT(ldlt.append(matrix.block(25, 0, 15, 25), matrix.block(25, 25, 15, 15)), 1e-8);
+  const MatrixXd rhs = MatrixXd::Random(40, 2);
+  EXPECT_LT(relative_difference(ldlt.solve(rhs), matrix.partialPivLu().solve(rhs)), 1e-10);
+}
+
+TEST(BorderedBlockLdlt, ReportsAZeroPivotForARepeatedRowAndColumn) {
+  MatrixXd matrix = random_symmetric(12, 14);
   matrix.row(10) = matrix.row(3);
-  detail::BorderedLu lu;
-  ASSERT_GT(lu.append(MatrixXd(0, 8), MatrixXd(8, 0), matrix.topLeftCorner(8, 8)), 0.0);
-  const double pivot =
-      lu.append(matrix.block(0, 8, 8, 4), matrix.block(8, 0, 4, 8), matrix.block(8, 8, 4, 4));
+  matrix.col(10) = matrix.col(3);
+  detail::BorderedBlockLdlt ldlt;
+  ASSERT_GT(ldlt.append(MatrixXd(8, 0), matrix.topLeftCorner(8, 8)), 0.0);
+  const double pivot = ldlt.append(matrix.block(8, 0, 4, 8), matrix.block(8, 8, 4, 4));
   EXPECT_LT(pivot, 1e-14);
 }
 
-TEST(BorderedLu, RejectsBlocksThatDoNotBorderTheMatrix) {
-  detail::BorderedLu lu;
-  lu.append(MatrixXd(0, 3), MatrixXd(3, 0), MatrixXd::Identity(3, 3));
-  EXPECT_THROW(lu.append(MatrixXd(2, 2), MatrixXd(2, 3), MatrixXd::Identity(2, 2)), ArgumentError);
-  EXPECT_THROW(lu.solve(MatrixXd(4, 1)), ArgumentError);
+TEST(BorderedBlockLdlt, RejectsBlocksThatDoNotBorderTheMatrix) {
+  detail::BorderedBlockLdlt ldlt;
+  ldlt.append(MatrixXd(3, 0), MatrixXd::Identity(3, 3));
+  EXPECT_THROW(ldlt.append(MatrixXd(2, 2), MatrixXd::Identity(2, 2)), ArgumentError);
+  EXPECT_THROW(ldlt.append(MatrixXd(2, 3), MatrixXd::Identity(3, 3)), ArgumentError);
+  EXPECT_THROW(ldlt.solve(MatrixXd(4, 1)), ArgumentError);
 }
 
 class RbfSystemTest : public ::testing::Test {

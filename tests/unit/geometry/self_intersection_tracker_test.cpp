@@ -56,6 +56,8 @@ TEST_F(SelfIntersectionTrackerTest, AgreesWithTheWholeMeshTestAfterLocalMoves) {
       const int f = pick(random) % static_cast<int>(faces.rows());
       candidate.row(faces(f, 2)) = 0.5 * (candidate.row(faces(f, 0)) + candidate.row(faces(f, 1)));
     }
+    if (step % 10 == 6) candidate.row(pick(random)) = candidate.row(pick(random));  // faces stretched across the arm
+    if (step % 20 == 9) candidate *= 1.01;  // everything moved
     const FacePairs expected = self_intersecting_face_pairs(candidate, faces);
     const FacePairs probed = tracker.pairs_if(candidate);
     ASSERT_EQ(probed, expected) << "step " << step;

@@ -1,0 +1,95 @@
+#include "correct/stretch_relief.hpp"
+
+#include "correct/repair_stage.hpp"
+#include "correct/target_reproduction.hpp"
+#include "geometry/vertex_regions.hpp"
+
+#include <posekit/as_rigid_as_possible.hpp>
+
+#include <utility>
+
+namespace posekit::detail {
+namespace {
+
+// Rings grown around the stretched faces' corners, smallest first: the displacement has to spread
+// over more edges the farther it reaches.
+constexpr int kMarginRings[] = {1, 2, 4, 8};
+
+// Beyond this fraction of the vertices a region is no longer a stretched band but the pose.
+constexpr double kLargestRegionFraction = 0.25;
+
+// Rounds while they help: relieving one band can leave its neighbour stretched.
+constexpr int kRounds = 2;
+
+class StretchReliefStage final : public RepairStage {
+ public:
+  StretchReliefStage()
+      : RepairStage({"stretch-relief",
+                     "give regions the correction stretched the target's shape where that adds no intersection"},
+                    kEveryScope) {}
+
+  bool wanted(const Candidate& current, const CorrectionContext& context) const override {
+    return context.stretch.count(current.pose()) > 0;
+  }
+
+  std::optional<Candidate> run(const Candidate& current, CorrectionContext& context, StageReport& report) override {
+    Candidate relieved = current;
+    const int before = context.stretch.count(current.pose());
+    const SweepOutcome outcome = relieve_stretch(relieved, context);
+    report.regions = outcome.regions;
+    report.vertices = outcome.vertices;
+    const int after = context.stretch.count(relieved.pose());
+    report.details = {{"stretched_faces_before", before}, {"stretched_faces_after", after}};
+    if (outcome.regions == 0) return std::nullopt;
+    report.note = std::to_string(outcome.regions) + " stretched region(s) (" + std::to_string(outcome.vertices) +
+                  " vertices) given the target's shape; stretched faces " + std::to_string(before) + " -> " +
+                  std::to_string(after);
+    return relieved;
+  }
+};
+
+}  // namespace
+
+SweepOutcome relieve_stretch(Candidate& candidate, const CorrectionContext& context) {
+  const auto vertex_count = static_cast<size_t>(context.vertex_count());
+  const std::vector<char> no_handles(vertex_count, 0);
+  RegionSweep sweep;
+  sweep.seed_rings = {1};
+  sweep.rounds = kRounds;
+  sweep.goal.faces_to_mend = [&](const Candidate& current) { return context.stretch.stretched_faces(current.pose()); };
+  sweep.goal.improves = [&](const Probe& proposal, const Candidate& current) {
+    return proposal.new_faces.size() <= current.new_faces().size() &&
+           context.stretch.count(proposal.pose) < context.stretch.count(current.pose());
+  };
+  const auto relieve = [&](const std::vector<int>& band, const Candidate& current) -> std::optional<Probe> {
+    std::vector<char> core(vertex_count, 0);
+    for (int v : band) core[static_cast<size_t>(v)] = 1;
+    const int stretched = context.stretch.count(current.pose());
+    for (const int margin : kMarginRings) {
+      const std::vector<char> region = within_rings(core, context.neighbours, margin);
+      if (static_cast<double>(std::count(region.begin(), region.end(), 1)) >
+          kLargestRegionFraction * static_cast<double>(vertex_count)) {
+        break;
+      }
+      // The target's shape displaced as the surroundings are; failing that, as rigid as possible
+      // towards it, which keeps more of the correction's displacement inside the region.
+      for (int variant = 0; variant < 2; ++variant) {
+        std::optional<Eigen::MatrixX3d> moved =
+            variant == 0 ? std::optional<Eigen::MatrixX3d>(with_shape_of(current.pose(), context.target, region, context.neighbours))
+                         : as_rigid_as_possible(context.target, current.pose(), context.faces, region, no_handles,
+                                                current.pose(), context.neighbours);
+        if (!moved) continue;
+        Probe probe = current.probe(std::move(*moved));
+        if (probe.new_faces.size() <= current.new_faces().size() && context.stretch.count(probe.pose) < stretched) {
+          return probe;
+        }
+      }
+    }
+    return std::nullopt;
+  };
+  return sweep_regions(candidate, context, sweep, relieve);
+}
+
+std::unique_ptr<RepairStage> make_stretch_relief_stage() { return std::make_unique<StretchReliefStage>(); }
+
+}  // namespace posekit::detail
