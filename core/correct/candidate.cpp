@@ -33,10 +33,14 @@ void Candidate::accept(Probe probe) {
 
 bool better(const Candidate& a, const Candidate& b, const CorrectionContext& context) {
   if (a.new_face_count() != b.new_face_count()) return a.new_face_count() < b.new_face_count();
+  const double a_median = median_distance(a.pose(), context.target);
+  const double b_median = median_distance(b.pose(), context.target);
+  const double near = context.options.separation_tolerance * context.diagonal;
+  if ((a_median <= near) != (b_median <= near)) return a_median <= near;
   const int a_stretched = context.stretch.count(a.pose());
   const int b_stretched = context.stretch.count(b.pose());
   if (a_stretched != b_stretched) return a_stretched < b_stretched;
-  return median_distance(a.pose(), context.target) < median_distance(b.pose(), context.target);
+  return a_median < b_median;
 }
 
 double median_distance(const Eigen::MatrixX3d& pose, const Eigen::MatrixX3d& target) {

@@ -51,9 +51,9 @@ class Candidate {
 
 struct CorrectionContext;
 
-/// The one rule for two candidates: fewer new intersecting faces; between equals, fewer faces the
-/// correction stretched (StretchMeasure); between equals again, the smaller median distance to the
-/// context's target.
+/// The one rule for two candidates: fewer new intersecting faces; between equals, the one whose
+/// median distance to the context's target is within the separation tolerance (of the diagonal);
+/// then fewer faces the correction stretched (StretchMeasure); then the smaller median distance.
 bool better(const Candidate& a, const Candidate& b, const CorrectionContext& context);
 
 /// Median distance between corresponding rows of `pose` and `target`.

@@ -14,6 +14,8 @@
 #include <tbb/parallel_for.h>
 
 #include <cmath>
+#include <memory>
+#include <optional>
 #include <limits>
 #include <utility>
 
@@ -111,24 +113,14 @@ Eigen::MatrixX3d contact_pushes(const Eigen::MatrixX3d& pose, const Eigen::Matri
     for (int v : parts[p]) {
       const Kernel::Point_3 point = point_of(pose, v);
       double depth = std::numeric_limits<double>::infinity();
-      Eigen::Index deepest_behind = -1;
       for (size_t k = 0; k < surface.size(); ++k) {
         const Kernel::Point_3 nearest = project(surface[k], point);
         const Eigen::RowVector3d offset(point.x() - nearest.x(), point.y() - nearest.y(), point.z() - nearest.z());
         if (offset.dot(outward.row(surface_faces[k])) > 0.0) continue;  // in front of that face
-        if (offset.norm() < depth) {
-          depth = offset.norm();
-          deepest_behind = surface_faces[k];
-        }
+        depth = std::min(depth, offset.norm());
       }
       if (!std::isfinite(depth)) continue;
-      // Back into its own part, against its normal, as two bodies pressed together give way; where
-      // the surface is folded so that this would go deeper into the other part, out through the
-      // face it lies behind.
-      const Eigen::RowVector3d out_of_partner = outward.row(deepest_behind);
-      const Eigen::RowVector3d direction = (-normals.row(v)).dot(out_of_partner) >= 0.0 ? Eigen::RowVector3d(-normals.row(v))
-                                                                                        : out_of_partner;
-      push.row(v) = (kDepthShare * depth + clearance) * direction;
+      push.row(v) = -(kDepthShare * depth + clearance) * normals.row(v);
       pushed[static_cast<size_t>(v)] = 1;
     }
   });
@@ -159,35 +151,55 @@ Eigen::MatrixX3d contact_pushes(const Eigen::MatrixX3d& pose, const Eigen::Matri
 }
 
 // Rounds without a better pose after which a separation stops: it has settled.
-constexpr int kRoundsWithoutProgress = 3;
+constexpr int kRoundsWithoutProgress = 5;
 
+// The separation of the target's contacts depends only on the context, so both places of the
+// ladder share one outcome.
+struct SeparationCache {
+  std::optional<SeparationOutcome> outcome;
+};
+
+// Early: where the field and the first repairs freed less than half of the target's new faces, the
+// pose is entangled throughout and separating its contacts, which costs a few seconds, may free it
+// at once: then the costly stages have nothing left to do. Its pose is kept only when clean. Late:
+// where faces remain or the candidate strayed from the target, the separation competes as is.
 class ContactSeparationStage final : public RepairStage {
  public:
-  ContactSeparationStage()
+  ContactSeparationStage(std::shared_ptr<SeparationCache> cache, bool early)
       : RepairStage({"contact-separation",
                      "separate the target's own contacts where the correction strays from the target or faces remain"},
-                    scope_bit(CorrectionScope::whole_pose)) {}
+                    scope_bit(CorrectionScope::whole_pose)),
+        cache_(std::move(cache)),
+        early_(early) {}
 
   bool enabled(const CorrectionOptions& options) const override {
     return RepairStage::enabled(options) && options.reproduction_rings >= 0;
   }
 
   bool wanted(const Candidate& current, const CorrectionContext& context) const override {
+    if (early_) return 2 * current.new_face_count() > context.target_new_faces;
     return current.new_face_count() > 0 ||
            median_distance(current.pose(), context.target) > context.options.separation_tolerance * context.diagonal;
   }
 
   std::optional<Candidate> run(const Candidate& /*current*/, CorrectionContext& context, StageReport& report) override {
-    SeparationOutcome outcome =
-        separate_contacts(context, Candidate(context.target, context.faces, context.reference_intersecting,
-                                             context.target_pairs));
+    if (!cache_->outcome) {
+      cache_->outcome = separate_contacts(
+          context, Candidate(context.target, context.faces, context.reference_intersecting, context.target_pairs));
+    }
+    const SeparationOutcome& outcome = *cache_->outcome;
     report.details = {{"rounds", outcome.rounds}, {"new_faces", outcome.best.new_face_count()}};
     report.regions = 1;
     report.vertices = static_cast<int>(differing_vertices(outcome.best.pose(), context.target).size());
+    if (early_ && outcome.best.new_face_count() > 0) return std::nullopt;
     report.note = "the target with its own contacts separated (" + std::to_string(outcome.rounds) +
                   " rounds), in place of the correction";
-    return std::move(outcome.best);
+    return outcome.best;
   }
+
+ private:
+  std::shared_ptr<SeparationCache> cache_;
+  bool early_;
 };
 
 // The same pushes on the candidate itself, for the few contacts the stages before left: a face
@@ -254,7 +266,10 @@ SeparationOutcome separate_contacts(const CorrectionContext& context, Candidate 
   return out;
 }
 
-std::unique_ptr<RepairStage> make_contact_separation_stage() { return std::make_unique<ContactSeparationStage>(); }
+std::pair<std::unique_ptr<RepairStage>, std::unique_ptr<RepairStage>> make_contact_separation_stages() {
+  auto cache = std::make_shared<SeparationCache>();
+  return {std::make_unique<ContactSeparationStage>(cache, true), std::make_unique<ContactSeparationStage>(cache, false)};
+}
 std::unique_ptr<RepairStage> make_contact_push_stage() { return std::make_unique<ContactPushStage>(); }
 
 }  // namespace posekit::detail

@@ -90,13 +90,14 @@ ResultReport measure_result(const Eigen::MatrixX3d& result, const Eigen::MatrixX
 CorrectionContext make_context(const Eigen::MatrixX3d& reference, const Eigen::MatrixX3d& target,
                                const Eigen::MatrixX3i& faces, Device& device, const CorrectionOptions& options,
                                CorrectionScope scope, const CorrectionProgress& progress) {
-  CorrectionContext context{reference, target, faces,  device, options, scope, {},
-                            {},        {},     {},    0.0,     StretchMeasure(reference, target, faces),
-                            progress,  nullptr, {}};
+  CorrectionContext context{reference, target,  faces, device, options, scope, {}, {}, {}, {}, 0,
+                            0.0,       StretchMeasure(reference, target, faces), progress, nullptr, {}};
   context.neighbours = vertex_neighbours(faces, static_cast<int>(reference.rows()));
   context.reference_pairs = self_intersecting_face_pairs(reference, faces);
   context.target_pairs = self_intersecting_face_pairs(target, faces);
   context.reference_intersecting = faces_in_pairs(context.reference_pairs);
+  context.target_new_faces = static_cast<int>(
+      new_intersecting_faces(faces_in_pairs(context.target_pairs), context.reference_intersecting).size());
   context.diagonal = bounding_box_diagonal(reference);
   return context;
 }
@@ -129,7 +130,11 @@ Eigen::MatrixX3d correct_in_scope(const Eigen::MatrixX3d& reference, const Eigen
   CorrectionOptions scoped = options;
   if (scope != CorrectionScope::whole_pose) scoped.excluded_vertices.clear();
   CorrectionContext context = make_context(reference_n, target_n, faces, device, scoped, scope, progress);
-  if (allowed != nullptr) context.reference_intersecting = *allowed;
+  if (allowed != nullptr) {
+    context.reference_intersecting = *allowed;
+    context.target_new_faces = static_cast<int>(
+        new_intersecting_faces(faces_in_pairs(context.target_pairs), context.reference_intersecting).size());
+  }
   context.field_report = &report.field;
   report.field.seconds.normalization =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - normalization_start).count();

@@ -47,6 +47,7 @@ struct CorrectionContext {
   FacePairs reference_pairs;                 ///< the reference's intersecting pairs
   FacePairs target_pairs;                    ///< the target's
   std::vector<int> reference_intersecting;   ///< faces of reference_pairs, sorted: never new
+  int target_new_faces = 0;                  ///< new faces of the target itself
   double diagonal = 0;                       ///< the reference's bounding-box diagonal
   StretchMeasure stretch;                    ///< faces a candidate stretched beyond both poses
   CorrectionProgress progress;

@@ -16,26 +16,40 @@ bool RepairStage::wanted(const Candidate& current, const CorrectionContext& /*co
   return current.new_face_count() > 0;
 }
 
-// Field first; then the stages that change least (a region restored, moved back in time, the
-// reference's slid intersections given back, corrected anew on its own and what that leaves moved
-// back again, relaxed, the reference's intersections again, pushed apart); then the costly ones that start again (two legs); then the target
-// given back wherever nothing is wrong, stretched regions given its shape, and last the separation of the target's own contacts,
-// which replaces the correction only where that is better.
-RepairLadder default_repair_ladder() {
-  RepairLadder ladder;
-  ladder.push_back(make_field_stage());
+namespace {
+
+// The stages that change least, by how they change a region: restored to the target's shape,
+// moved back in time along the path lines, the reference's slid intersections given back its shape,
+// relaxed towards the reference's shape, pushed out of what it lies in. They are cheap and the costly
+// stages before them leave a few faces they free, so they run again after each.
+void add_local_repairs(RepairLadder& ladder) {
   ladder.push_back(make_fallback_stage());
   ladder.push_back(make_rollback_stage());
   ladder.push_back(make_reference_zones_stage());
-  ladder.push_back(make_local_correction_stage());
-  ladder.push_back(make_rollback_stage());
   ladder.push_back(make_relaxation_stage());
-  ladder.push_back(make_reference_zones_stage());
   ladder.push_back(make_contact_push_stage());
+}
+
+}  // namespace
+
+// Field first, then the local repairs; where they freed less than half of what the target had, the
+// separation of the target's contacts, which frees poses pressed together throughout in a few
+// seconds; then the costly stages, each a region or the whole motion corrected anew and followed
+// by the local repairs; then the target given back wherever nothing is wrong, stretched regions
+// given its shape, and last the separation of the target's contacts competing as is.
+RepairLadder default_repair_ladder() {
+  auto [early_separation, late_separation] = make_contact_separation_stages();
+  RepairLadder ladder;
+  ladder.push_back(make_field_stage());
+  add_local_repairs(ladder);
+  ladder.push_back(std::move(early_separation));
+  ladder.push_back(make_local_correction_stage());
+  add_local_repairs(ladder);
   ladder.push_back(make_halfway_stage());
+  add_local_repairs(ladder);
   ladder.push_back(make_final_reproduction_stage());
   ladder.push_back(make_stretch_relief_stage());
-  ladder.push_back(make_contact_separation_stage());
+  ladder.push_back(std::move(late_separation));
   return ladder;
 }
 

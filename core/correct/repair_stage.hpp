@@ -11,6 +11,7 @@
 
 #include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
 namespace posekit::detail {
@@ -51,6 +52,8 @@ std::unique_ptr<RepairStage> make_halfway_stage();              // halfway_legs.
 std::unique_ptr<RepairStage> make_final_reproduction_stage();   // target_reproduction.cpp
 std::unique_ptr<RepairStage> make_stretch_relief_stage();       // stretch_relief.cpp
 std::unique_ptr<RepairStage> make_contact_push_stage();         // contact_separation.cpp
-std::unique_ptr<RepairStage> make_contact_separation_stage();   // contact_separation.cpp
+/// The contact separation early (kept only when clean, where the pose is entangled throughout) and
+/// late (competing as is), sharing one outcome: contact_separation.cpp.
+std::pair<std::unique_ptr<RepairStage>, std::unique_ptr<RepairStage>> make_contact_separation_stages();
 
 }  // namespace posekit::detail

@@ -26,7 +26,7 @@ class StretchReliefStage final : public RepairStage {
   StretchReliefStage()
       : RepairStage({"stretch-relief",
                      "give regions the correction stretched the target's shape where that adds no intersection"},
-                    kEveryScope) {}
+                    scope_bit(CorrectionScope::whole_pose)) {}
 
   bool wanted(const Candidate& current, const CorrectionContext& context) const override {
     return context.stretch.count(current.pose()) > 0;
@@ -72,12 +72,13 @@ SweepOutcome relieve_stretch(Candidate& candidate, const CorrectionContext& cont
         break;
       }
       // The target's shape displaced as the surroundings are; failing that, as rigid as possible
-      // towards it, which keeps more of the correction's displacement inside the region.
-      for (int variant = 0; variant < 2; ++variant) {
+      // towards it, which keeps more of the correction's displacement inside the region; where the
+      // target is itself entangled there, as rigid as possible towards the reference's shape.
+      for (int variant = 0; variant < 3; ++variant) {
         std::optional<Eigen::MatrixX3d> moved =
             variant == 0 ? std::optional<Eigen::MatrixX3d>(with_shape_of(current.pose(), context.target, region, context.neighbours))
-                         : as_rigid_as_possible(context.target, current.pose(), context.faces, region, no_handles,
-                                                current.pose(), context.neighbours);
+                         : as_rigid_as_possible(variant == 1 ? context.target : context.reference, current.pose(),
+                                                context.faces, region, no_handles, current.pose(), context.neighbours);
         if (!moved) continue;
         Probe probe = current.probe(std::move(*moved));
         if (probe.new_faces.size() <= current.new_faces().size() && context.stretch.count(probe.pose) < stretched) {

@@ -2,7 +2,8 @@
 // much farther than its neighbour the faces between them stretch (the field drags a part along, a
 // blend into the target is narrower than the displacement it fades out). Such a region is given
 // the target's own shape, displaced as its surroundings are, or is relaxed as-rigidly-as-possible
-// towards that shape; kept only where that adds no intersection and stretches fewer faces.
+// towards that shape or the reference's; kept only where that adds no intersection and stretches
+// fewer faces.
 #pragma once
 
 #include "correct/candidate.hpp"

@@ -76,8 +76,10 @@ struct CorrectionOptions {
   /// rounds; then reproduction is skipped).
   int reproduction_rings = 3;
   int blend_rings = 3;               ///< rings over which a kept region fades into the target (>= 0)
-  /// The contact separation runs where the candidate still has new intersections or its median
-  /// distance to the target is above this fraction of the reference's bounding-box diagonal (> 0).
+  /// A candidate whose median distance to the target is within this fraction of the reference's
+  /// bounding-box diagonal counts as near the target (> 0): the repair ladder prefers a near
+  /// candidate to a less stretched one, and separates the target's contacts where the candidate is
+  /// not near.
   double separation_tolerance = 1e-3;
   /// Repair stages that do not run, by name (see repair_stages(); all but the field correction
   /// may be named). An unknown name is an ArgumentError.

@@ -17,13 +17,23 @@ namespace {
 
 // The stage order the documentation gives (docs/correct.md): the rollback runs again after the
 // local correction; repair_stages() names each stage once.
-const std::vector<std::string> kLadderOrder = {
-    "field",      "fallback",        "rollback",     "reference-zones", "local-correction",   "rollback",
-    "relaxation", "reference-zones", "contact-push", "halfway",         "final-reproduction", "stretch-relief",
-    "contact-separation"};
+const std::vector<std::string> kLocalRepairs = {"fallback", "rollback", "reference-zones", "relaxation",
+                                                "contact-push"};
+const std::vector<std::string> kLadderOrder = [] {
+  std::vector<std::string> order{"field"};
+  const auto local_repairs = [&] { order.insert(order.end(), kLocalRepairs.begin(), kLocalRepairs.end()); };
+  local_repairs();
+  order.push_back("contact-separation");
+  order.push_back("local-correction");
+  local_repairs();
+  order.push_back("halfway");
+  local_repairs();
+  for (const char* name : {"final-reproduction", "stretch-relief", "contact-separation"}) order.push_back(name);
+  return order;
+}();
 const std::vector<std::string> kStageNames = {
-    "field",        "fallback", "rollback",           "reference-zones", "local-correction",  "relaxation",
-    "contact-push", "halfway",  "final-reproduction", "stretch-relief",  "contact-separation"};
+    "field",      "fallback",     "rollback",           "reference-zones", "relaxation",        "contact-push",
+    "contact-separation", "local-correction", "halfway", "final-reproduction", "stretch-relief"};
 
 // A stage that records when it ran and proposes a fixed pose.
 class RecordingStage final : public RepairStage {
