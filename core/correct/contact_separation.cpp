@@ -24,7 +24,8 @@ namespace {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 
-// Rounds of pushes and relaxations at most; cat-07 needs seven.
+// Rounds of pushes and relaxations at most (docs/correct.md: a pose pressed together throughout
+// needed nine).
 constexpr int kRounds = 20;
 // A vertex that enters another part changes its winding number by one (1/2 on its own surface,
 // 3/2 inside another part of the same orientation).
@@ -41,11 +42,11 @@ constexpr double kClearance = 0.2;
 // Passes of averaging over neighbouring pushed vertices, which differ in depth from one to the next.
 constexpr int kSmoothingPasses = 2;
 // Rings around the pushed vertices that follow them as-rigidly-as-possible: more drag more of the
-// surface along and crease it elsewhere (cat-07: 0 new faces left after seven rounds with two rings,
-// 144 after twenty with three).
+// surface along and crease it elsewhere (docs/correct.md: two rings freed a pose three left at 144
+// faces).
 constexpr int kFollowingRings = 2;
-// A fold is relaxed over a few rings only, and not kept where it swings a part away (the relaxation
-// towards the reference straightened cat-07's curled tail by half the diagonal).
+// A fold is relaxed over a few rings only, and not kept where it swings a part away (unbounded, the
+// relaxation towards the reference straightened a curled tail by half the diagonal).
 constexpr int kFoldMargin = 6;
 constexpr double kLargestFoldMove = 24.0;  // mean edge lengths
 

@@ -1,5 +1,5 @@
 // Separation of the target's own contacts. Where parts of the target press into each other over
-// much of the pose (an animal curled up asleep, its head sunk into its paws), the field's
+// much of the pose (an animal curled up, its head sunk into its paws), the field's
 // correction moves whole parts off the target. Starting from the target instead, each part is
 // pushed back into itself where it lies inside another (half the depth each, as two soft bodies
 // flatten against each other), the surface around follows as-rigidly-as-possible, and what folds is

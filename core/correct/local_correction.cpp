@@ -4,6 +4,7 @@
 #include "correct/repair_stage.hpp"
 #include "geometry/vertex_regions.hpp"
 
+#include <posekit/as_rigid_as_possible.hpp>
 #include <posekit/error.hpp>
 #include <posekit/submesh.hpp>
 
@@ -87,21 +88,43 @@ SweepOutcome correct_regions_locally(Candidate& candidate, const CorrectionConte
     } catch (const Error&) {
       return std::nullopt;  // a region the pipeline cannot take on its own (a degenerate field, say)
     }
-    // Blended in from the region's rim, which keeps its place, so the seam stays closed.
+    // Blended in from the region's rim, which keeps its place, so the seam stays closed: linearly
+    // over the band, and as-rigidly-as-possible, the band keeping its own shape between the
+    // corrected core and the rim, which stretches it less where the core moved far.
     std::vector<char> outside(static_cast<size_t>(vertex_count), 0);
     for (int v = 0; v < vertex_count; ++v) outside[static_cast<size_t>(v)] = inside[static_cast<size_t>(v)] == 0;
     const std::vector<int> depth = ring_distances(outside, context.neighbours, blend_rings + 1);
     Eigen::MatrixX3d blended = current.pose();
+    Eigen::MatrixX3d core_positions = current.pose();
+    std::vector<char> band(static_cast<size_t>(vertex_count), 0);
+    std::vector<char> core(static_cast<size_t>(vertex_count), 0);
     for (size_t i = 0; i < sub_vertices.size(); ++i) {
       const int v = sub_vertices[i];
       const int d = depth[static_cast<size_t>(v)];
       const double weight = d < 0 ? 1.0 : std::min(1.0, static_cast<double>(d - 1) / static_cast<double>(blend_rings + 1));
+      core_positions.row(v) = corrected.row(static_cast<Eigen::Index>(i));
+      if (weight >= 1.0) core[static_cast<size_t>(v)] = 1;
+      else if (weight > 0.0) band[static_cast<size_t>(v)] = 1;
       if (weight <= 0.0) continue;
       blended.row(v) += weight * (corrected.row(static_cast<Eigen::Index>(i)) - blended.row(v));
     }
-    Probe probe = current.probe(std::move(blended));
-    if (probe.new_faces.size() >= current.new_faces().size()) return std::nullopt;
-    return probe;
+    std::optional<Probe> best;
+    const auto consider = [&](Eigen::MatrixX3d pose) {
+      Probe probe = current.probe(std::move(pose));
+      if (probe.new_faces.size() >= current.new_faces().size()) return;
+      if (best && (probe.new_faces.size() > best->new_faces.size() ||
+                   (probe.new_faces.size() == best->new_faces.size() &&
+                    context.stretch.count(probe.pose) >= context.stretch.count(best->pose)))) {
+        return;
+      }
+      best = std::move(probe);
+    };
+    consider(std::move(blended));
+    if (std::optional<Eigen::MatrixX3d> rigid = as_rigid_as_possible(current.pose(), current.pose(), context.faces, band,
+                                                                      core, core_positions, context.neighbours)) {
+      consider(std::move(*rigid));
+    }
+    return best;
   };
   return sweep_regions(candidate, context, sweep, correct);
 }

@@ -18,35 +18,39 @@ bool RepairStage::wanted(const Candidate& current, const CorrectionContext& /*co
 
 namespace {
 
-// The stages that change least, by how they change a region: restored to the target's shape,
-// moved back in time along the path lines, the reference's slid intersections given back its shape,
-// relaxed towards the reference's shape, pushed out of what it lies in. They are cheap and the costly
-// stages before them leave a few faces they free, so they run again after each.
-void add_local_repairs(RepairLadder& ladder) {
-  ladder.push_back(make_fallback_stage());
+// The local repairs, by how they change a region: restored to the target's shape, moved back in
+// time along the path lines, the reference's slid intersections given back its shape, relaxed
+// towards the reference's shape, pushed out of what it lies in. They are cheap, and the costly
+// stages leave a few faces they free, so they run again after each. The first round leaves out the
+// relaxation and the push, which move more of the pose than the local correction after them.
+void add_local_repairs(RepairLadder& ladder, bool all) {
+  if (all) ladder.push_back(make_fallback_stage());
   ladder.push_back(make_rollback_stage());
   ladder.push_back(make_reference_zones_stage());
+  if (!all) return;
   ladder.push_back(make_relaxation_stage());
   ladder.push_back(make_contact_push_stage());
 }
 
 }  // namespace
 
-// Field first, then the local repairs; where they freed less than half of what the target had, the
-// separation of the target's contacts, which frees poses pressed together throughout in a few
-// seconds; then the costly stages, each a region or the whole motion corrected anew and followed
-// by the local repairs; then the target given back wherever nothing is wrong, stretched regions
-// given its shape, and last the separation of the target's contacts competing as is.
+// Field, the fallback and the first local repairs; where they freed less than half of what the
+// target had, the separation of the target's contacts, which frees poses pressed together
+// throughout in a few seconds; then the costly stages, each a region or the whole motion corrected
+// anew and followed by the local repairs; then the target given back wherever nothing is wrong,
+// stretched regions given its shape, and last the separation of the target's contacts competing
+// as is.
 RepairLadder default_repair_ladder() {
   auto [early_separation, late_separation] = make_contact_separation_stages();
   RepairLadder ladder;
   ladder.push_back(make_field_stage());
-  add_local_repairs(ladder);
+  ladder.push_back(make_fallback_stage());
+  add_local_repairs(ladder, false);
   ladder.push_back(std::move(early_separation));
   ladder.push_back(make_local_correction_stage());
-  add_local_repairs(ladder);
+  add_local_repairs(ladder, true);
   ladder.push_back(make_halfway_stage());
-  add_local_repairs(ladder);
+  add_local_repairs(ladder, true);
   ladder.push_back(make_final_reproduction_stage());
   ladder.push_back(make_stretch_relief_stage());
   ladder.push_back(std::move(late_separation));

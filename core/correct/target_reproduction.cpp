@@ -113,8 +113,7 @@ Reproduction reproduce_target(const Eigen::MatrixX3d& result, const Eigen::Matri
 namespace {
 
 // The final reproduction starts from the target's intersecting faces alone, so it widens one ring
-// at a time around what it would add, for longer (the shared cat and lion poses needed two to ten
-// rounds).
+// at a time around what it would add, for longer (real poses needed two to ten rounds).
 constexpr int kFinalReproductionAttempts = 12;
 
 // After the repairs, which keep or move whole regions, only the target's own new intersections

@@ -49,12 +49,12 @@ class FaceBox {
 };
 
 // CGAL's parallel box intersection works on four copies of the boxes in sixteen tasks; it only pays
-// off with more than a couple of cores and more than a few thousand faces (measured on the elephant:
+// off with more than a couple of cores and more than a few thousand faces (measured on an 84k-face mesh:
 // with 2 cores the sequential search is about 10% faster).
 constexpr std::size_t kParallelBoxThreshold = 4096;
 constexpr int kParallelBoxMinThreads = 4;
 // Boxes per leaf of CGAL's segment tree below which it scans pairs directly; 1000 was fastest on
-// the elephant (84k faces); with the library's default of 10 the whole search takes 2.5 times longer.
+// an 84k-face mesh; with the library's default of 10 the whole search takes 2.5 times longer.
 constexpr std::ptrdiff_t kBoxCutoff = 1000;
 
 std::vector<FacePair> candidate_pairs(std::vector<FaceBox>& boxes) {

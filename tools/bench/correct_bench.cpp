@@ -19,6 +19,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include <cmath>
+
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -49,21 +51,27 @@ void correct_and_count(benchmark::State& state, const Eigen::MatrixX3d& referenc
   state.counters["stretched"] = report.result.stretched_faces;
 }
 
-// range(0): about that many thousand vertices; range(1): 1 for a longer arm at the 4k arm's
-// resolution, 0 for a finer arm of the 4k arm's length; range(2): 1 for the whole mesh.
-void BM_CorrectArm(benchmark::State& state) {
-  const auto scale = static_cast<int>(state.range(0) / 4);  // 1, 4, 16, 64
+// The arm of about `kvertices` thousand vertices (4, 16, 64 or 256): finer (more vertices around
+// and along the same arm) or longer (the 4k arm's resolution and joint, as many vertices, the arm
+// longer away from the joint).
+DemoArmOptions arm_of(int kvertices, bool longer) {
   DemoArmOptions arm;
   arm.bend_angles_degrees = {135.0};
-  if (state.range(1) == 1) {
-    arm.cylinder_length *= scale;
-    arm.blend_width = 1.0;
-  } else {
-    int factor = 1;
-    while (factor * factor < scale) ++factor;
-    arm.ring_segments *= factor;
-  }
-  const PoseSet poses = make_demo_arm(arm);
+  int factor = 1;
+  while (factor * factor < kvertices / 4) ++factor;
+  DemoArmOptions finer = arm;
+  finer.ring_segments *= factor;
+  if (!longer) return finer;
+  // The finer arm's vertex count in rings of the 4k arm's segments: the caps keep theirs.
+  const auto target = static_cast<double>(make_demo_arm(finer).pose(0).rows());
+  const double spacing = 2.0 * M_PI * arm.radius / arm.ring_segments;
+  arm.cylinder_length = (target / arm.ring_segments - 2.0 * (arm.ring_segments / 4) + 1.0) * spacing;
+  return arm;
+}
+
+// range(0): thousands of vertices; range(1): 1 for the longer arm; range(2): 1 for the whole mesh.
+void BM_CorrectArm(benchmark::State& state) {
+  const PoseSet poses = make_demo_arm(arm_of(static_cast<int>(state.range(0)), state.range(1) == 1));
   CorrectionOptions options;
   options.whole_mesh = state.range(2) == 1;
   correct_and_count(state, poses.pose(0), poses.pose(1), poses.faces(), options);

@@ -4,6 +4,9 @@
 #include <posekit/mesh_io.hpp>
 #include <posekit/self_intersections.hpp>
 
+#include <posekit/self_intersection_tracker.hpp>
+#include <posekit/winding_numbers.hpp>
+
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
@@ -72,6 +75,40 @@ BENCHMARK_CAPTURE(BM_SelfIntersectionsSharedPose, lion_01, std::string("lion-pos
     ->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_SelfIntersectionsSharedPose, elephant_01, std::string("elephant-poses/elephant-01.obj"))
     ->UseRealTime()->Unit(benchmark::kMillisecond);
+
+// The intersection oracle of the repair stages: a region of about `range(0)` vertices moved on the
+// elephant (84k faces) and tested again, against the whole-mesh test above.
+void BM_TrackerProbeSharedPose(benchmark::State& state) {
+  const posekit::Mesh* mesh = cached_pose("elephant-poses/elephant-01.obj");
+  if (mesh == nullptr) {
+    state.SkipWithError("shared pose data not found: elephant-poses/elephant-01.obj (set POSEKIT_DATA_DIR)");
+    return;
+  }
+  const posekit::SelfIntersectionTracker tracker(mesh->vertices, mesh->faces);
+  Eigen::MatrixX3d moved = mesh->vertices;
+  const Eigen::RowVector3d center = moved.row(0);
+  std::vector<std::pair<double, Eigen::Index>> by_distance;
+  for (Eigen::Index v = 0; v < moved.rows(); ++v) by_distance.emplace_back((moved.row(v) - center).norm(), v);
+  std::nth_element(by_distance.begin(), by_distance.begin() + state.range(0), by_distance.end());
+  for (Eigen::Index k = 0; k < state.range(0); ++k) moved.row(by_distance[static_cast<size_t>(k)].second) *= 1.001;
+  for (auto _ : state) benchmark::DoNotOptimize(tracker.pairs_if(moved).size());
+  state.counters["moved_vertices"] = static_cast<double>(state.range(0));
+}
+BENCHMARK(BM_TrackerProbeSharedPose)->Arg(100)->Arg(1000)->Arg(5000)->UseRealTime()->Unit(benchmark::kMillisecond);
+
+// Winding numbers at `range(0)` vertices of the elephant (the contact separation tests the
+// vertices near its contacts).
+void BM_WindingNumbersSharedPose(benchmark::State& state) {
+  const posekit::Mesh* mesh = cached_pose("elephant-poses/elephant-01.obj");
+  if (mesh == nullptr) {
+    state.SkipWithError("shared pose data not found: elephant-poses/elephant-01.obj (set POSEKIT_DATA_DIR)");
+    return;
+  }
+  const Eigen::MatrixX3d points = mesh->vertices.topRows(state.range(0));
+  for (auto _ : state) benchmark::DoNotOptimize(posekit::winding_numbers(mesh->vertices, mesh->faces, points).sum());
+  state.SetItemsProcessed(state.iterations() * state.range(0));
+}
+BENCHMARK(BM_WindingNumbersSharedPose)->Arg(100)->Arg(10000)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -9,7 +9,7 @@ namespace posekit {
 
 /// Winding number of the surface (#V by 3 `vertices`, #F by 3 `faces`) at each of the #P by 3
 /// `points`: the sum of the solid angles its faces subtend, over 4 pi. Faces near a point count
-/// exactly, far clusters by their dipole (error below 1e-2): O(#F log #F + #P log #F), parallel
+/// exactly, far clusters by their dipole (error below 0.02): O(#F log #F + #P log #F), parallel
 /// over points.
 Eigen::VectorXd winding_numbers(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces,
                                 const Eigen::MatrixX3d& points);

@@ -4,7 +4,6 @@
 #include "two_spheres.hpp"
 
 #include <posekit/self_intersections.hpp>
-#include <posekit/winding_numbers.hpp>
 
 #include <gtest/gtest.h>
 
@@ -12,18 +11,6 @@ namespace posekit::detail {
 namespace {
 
 using posekit::testing::two_spheres;
-
-TEST(WindingNumbers, OneInsideHalfOnTheSurfaceZeroOutside) {
-  const Mesh sphere = posekit::testing::icosphere(3);
-  Eigen::MatrixX3d points(4, 3);
-  points << 0, 0, 0, 0.5, 0.2, -0.1, 3, 0, 0, 0, 0, 0;
-  points.row(3) = sphere.vertices.row(100);
-  const Eigen::VectorXd winding = winding_numbers(sphere.vertices, sphere.faces, points);
-  EXPECT_NEAR(winding(0), 1.0, 1e-2);
-  EXPECT_NEAR(winding(1), 1.0, 1e-2);
-  EXPECT_NEAR(winding(2), 0.0, 1e-2);
-  EXPECT_NEAR(winding(3), 0.5, 0.05);
-}
 
 // Pressed a fifth of their radius into each other, the spheres are pushed apart where they
 // overlap, and their far sides keep the target's positions exactly.

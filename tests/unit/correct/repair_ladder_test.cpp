@@ -20,20 +20,17 @@ namespace {
 const std::vector<std::string> kLocalRepairs = {"fallback", "rollback", "reference-zones", "relaxation",
                                                 "contact-push"};
 const std::vector<std::string> kLadderOrder = [] {
-  std::vector<std::string> order{"field"};
-  const auto local_repairs = [&] { order.insert(order.end(), kLocalRepairs.begin(), kLocalRepairs.end()); };
-  local_repairs();
-  order.push_back("contact-separation");
-  order.push_back("local-correction");
-  local_repairs();
+  std::vector<std::string> order{"field", "fallback", "rollback", "reference-zones", "contact-separation",
+                                 "local-correction"};
+  order.insert(order.end(), kLocalRepairs.begin(), kLocalRepairs.end());
   order.push_back("halfway");
-  local_repairs();
+  order.insert(order.end(), kLocalRepairs.begin(), kLocalRepairs.end());
   for (const char* name : {"final-reproduction", "stretch-relief", "contact-separation"}) order.push_back(name);
   return order;
 }();
 const std::vector<std::string> kStageNames = {
-    "field",      "fallback",     "rollback",           "reference-zones", "relaxation",        "contact-push",
-    "contact-separation", "local-correction", "halfway", "final-reproduction", "stretch-relief"};
+    "field",      "fallback",     "rollback", "reference-zones",    "contact-separation", "local-correction",
+    "relaxation", "contact-push", "halfway",  "final-reproduction", "stretch-relief"};
 
 // A stage that records when it ran and proposes a fixed pose.
 class RecordingStage final : public RepairStage {
