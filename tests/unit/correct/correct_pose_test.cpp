@@ -7,6 +7,7 @@
 #include <posekit/geometry.hpp>
 #include <posekit/self_intersections.hpp>
 
+#include "bent_arm.hpp"
 #include "two_spheres.hpp"
 
 #include <limits>
@@ -16,19 +17,9 @@ namespace {
 
 class CorrectPose : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    DemoArmOptions options;
-    options.bend_angles_degrees = {135.0};
-    arm_ = new PoseSet(make_demo_arm(options));
-  }
-  static void TearDownTestSuite() {
-    delete arm_;
-    arm_ = nullptr;
-  }
-  static PoseSet* arm_;
+  const PoseSet* arm_ = &testing::bent_arm(48, 135.0);
   std::unique_ptr<Device> device_ = make_cpu_device();
 };
-PoseSet* CorrectPose::arm_ = nullptr;
 
 int exactly_at(const Eigen::MatrixX3d& pose, const Eigen::MatrixX3d& target) {
   int exact = 0;

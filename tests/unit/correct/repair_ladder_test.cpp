@@ -2,10 +2,10 @@
 // a proposal replaces the candidate only when better; every stage has its report entry.
 #include "correct/repair_ladder.hpp"
 
+#include "bent_arm.hpp"
 #include "correction_fixture.hpp"
 
 #include <posekit/correct.hpp>
-#include <posekit/demo_shape.hpp>
 
 #include <gtest/gtest.h>
 
@@ -63,19 +63,8 @@ class RecordingStage final : public RepairStage {
 
 class RepairLadderTest : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    DemoArmOptions options;
-    options.ring_segments = 16;
-    options.bend_angles_degrees = {150.0};
-    arm_ = new PoseSet(make_demo_arm(options));
-  }
-  static void TearDownTestSuite() {
-    delete arm_;
-    arm_ = nullptr;
-  }
-  static PoseSet* arm_;
+  const PoseSet* arm_ = &posekit::testing::bent_arm(16, 150.0);
 };
-PoseSet* RepairLadderTest::arm_ = nullptr;
 
 TEST_F(RepairLadderTest, RunsStagesInOrderAndKeepsOnlyBetterProposals) {
   CorrectionOptions options;

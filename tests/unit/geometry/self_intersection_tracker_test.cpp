@@ -1,8 +1,9 @@
 // The tracker re-tests only what moved; every answer must equal the whole-mesh test of the same pose.
-#include <posekit/demo_shape.hpp>
 #include <posekit/error.hpp>
 #include <posekit/self_intersection_tracker.hpp>
 #include <posekit/self_intersections.hpp>
+
+#include "bent_arm.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,19 +14,8 @@ namespace {
 
 class SelfIntersectionTrackerTest : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    DemoArmOptions options;
-    options.ring_segments = 16;
-    options.bend_angles_degrees = {150.0};
-    arm_ = new PoseSet(make_demo_arm(options));
-  }
-  static void TearDownTestSuite() {
-    delete arm_;
-    arm_ = nullptr;
-  }
-  static PoseSet* arm_;
+  const PoseSet* arm_ = &testing::bent_arm(16, 150.0);
 };
-PoseSet* SelfIntersectionTrackerTest::arm_ = nullptr;
 
 TEST_F(SelfIntersectionTrackerTest, StartsWithTheWholeMeshTest) {
   const SelfIntersectionTracker tracker(arm_->pose(1), arm_->faces());
