@@ -39,16 +39,11 @@ class HalfwayStage final : public RepairStage {
     const Eigen::MatrixX3d corrected =
         correct_in_scope(halfway_corrected, context.target, context.faces, context.device, context.options,
                          CorrectionScope::leg, nullptr, {}, &context.reference_intersecting);
-    Probe probe = current.probe(corrected);
     report.details = {{"halfway_new_faces", first_leg.result.new_intersecting_faces}};
-    report.regions = 1;
-    report.vertices = static_cast<int>(differing_vertices(probe.pose, current.pose()).size());
     report.note = "corrected in two legs through the pose halfway in edge space (" +
                   std::to_string(first_leg.result.new_intersecting_faces) +
                   " new intersecting faces there after its correction)";
-    Candidate two_legs = current;
-    two_legs.accept(std::move(probe));
-    return two_legs;
+    return whole_pose_proposal(current, corrected, report);
   }
 };
 

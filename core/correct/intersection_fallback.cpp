@@ -69,15 +69,13 @@ class FallbackStage final : public RepairStage {
     Candidate restored = current;
     const FallbackOutcome outcome = restore_target_regions(restored, context, context.field->classification.in_transit,
                                                            kFallbackDeviation * context.diagonal);
-    report.regions = outcome.sweep.regions;
-    report.vertices = outcome.sweep.vertices;
     report.details = {{"global_regions", outcome.global_regions}, {"smoothed_regions", outcome.smoothed_regions}};
-    if (outcome.sweep.regions == 0) return std::nullopt;
-    report.note = std::to_string(outcome.sweep.regions) + " region(s) (" + std::to_string(outcome.sweep.vertices) +
-                  " vertices): " + std::to_string(outcome.sweep.regions - outcome.smoothed_regions) +
-                  " given the target's shape, " + std::to_string(outcome.smoothed_regions) + " small one(s) smoothed; " +
-                  std::to_string(outcome.global_regions) + " where the tested poses pass a part through another";
-    return restored;
+    return sweep_proposal(
+        std::move(restored), outcome.sweep, report,
+        std::to_string(outcome.sweep.regions) + " region(s) (" + std::to_string(outcome.sweep.vertices) +
+            " vertices): " + std::to_string(outcome.sweep.regions - outcome.smoothed_regions) +
+            " given the target's shape, " + std::to_string(outcome.smoothed_regions) + " small one(s) smoothed; " +
+            std::to_string(outcome.global_regions) + " where the tested poses pass a part through another");
   }
 };
 

@@ -52,14 +52,12 @@ class LocalCorrectionStage final : public RepairStage {
         from_target = true;
       }
     }
-    report.regions = outcome.regions;
-    report.vertices = outcome.vertices;
     report.details = {{"from_target", from_target ? 1.0 : 0.0}};
-    if (outcome.regions == 0) return std::nullopt;
-    report.note = std::to_string(outcome.regions) + " region(s) (" + std::to_string(outcome.vertices) + " vertices) " +
-                  (from_target ? "of the target corrected on their own, in place of the field's result"
-                               : "corrected again on their own");
-    return corrected;
+    return sweep_proposal(std::move(corrected), outcome, report,
+                          std::to_string(outcome.regions) + " region(s) (" + std::to_string(outcome.vertices) +
+                              " vertices) " +
+                              (from_target ? "of the target corrected on their own, in place of the field's result"
+                                           : "corrected again on their own"));
   }
 };
 

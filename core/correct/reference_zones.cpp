@@ -35,12 +35,9 @@ class ReferenceZonesStage final : public RepairStage {
   std::optional<Candidate> run(const Candidate& current, CorrectionContext& context, StageReport& report) override {
     Candidate restored = current;
     const SweepOutcome outcome = restore_reference_zones(restored, context);
-    report.regions = outcome.regions;
-    report.vertices = outcome.vertices;
-    if (outcome.regions == 0) return std::nullopt;
-    report.note = std::to_string(outcome.regions) + " zone(s) of the reference's own intersections (" +
-                  std::to_string(outcome.vertices) + " vertices) given the reference's shape";
-    return restored;
+    return sweep_proposal(std::move(restored), outcome, report,
+                          std::to_string(outcome.regions) + " zone(s) of the reference's own intersections (" +
+                              std::to_string(outcome.vertices) + " vertices) given the reference's shape");
   }
 };
 

@@ -29,12 +29,9 @@ class RelaxationStage final : public RepairStage {
   std::optional<Candidate> run(const Candidate& current, CorrectionContext& context, StageReport& report) override {
     Candidate relaxed = current;
     const SweepOutcome outcome = relax_folded_regions(relaxed, context);
-    report.regions = outcome.regions;
-    report.vertices = outcome.vertices;
-    if (outcome.regions == 0) return std::nullopt;
-    report.note = std::to_string(outcome.regions) + " folded region(s) (" + std::to_string(outcome.vertices) +
-                  " vertices) relaxed towards the reference's shape";
-    return relaxed;
+    return sweep_proposal(std::move(relaxed), outcome, report,
+                          std::to_string(outcome.regions) + " folded region(s) (" + std::to_string(outcome.vertices) +
+                              " vertices) relaxed towards the reference's shape");
   }
 };
 

@@ -16,6 +16,24 @@ bool RepairStage::wanted(const Candidate& current, const CorrectionContext& /*co
   return current.new_face_count() > 0;
 }
 
+std::optional<Candidate> sweep_proposal(Candidate swept, const SweepOutcome& outcome, StageReport& report,
+                                        std::string note) {
+  report.regions = outcome.regions;
+  report.vertices = outcome.vertices;
+  if (outcome.regions == 0) return std::nullopt;
+  report.note = std::move(note);
+  return swept;
+}
+
+Candidate whole_pose_proposal(const Candidate& current, const Eigen::MatrixX3d& pose, StageReport& report) {
+  Probe probe = current.probe(pose);
+  report.regions = 1;
+  report.vertices = static_cast<int>(differing_vertices(probe.pose, current.pose()).size());
+  Candidate proposal = current;
+  proposal.accept(std::move(probe));
+  return proposal;
+}
+
 namespace {
 
 // The local repairs, by how they change a region: restored to the target's shape, moved back in
@@ -38,8 +56,8 @@ void add_local_repairs(RepairLadder& ladder, bool all) {
 // target had, the separation of the target's contacts, which frees poses pressed together
 // throughout in a few seconds; then the costly stages, each a region or the whole motion corrected
 // anew and followed by the local repairs; then the target given back wherever nothing is wrong,
-// stretched regions given its shape, and last the separation of the target's contacts competing
-// as is.
+// stretched regions given its shape, the separation of the target's contacts competing as is, and
+// last, where faces remain, the whole correction again with a wider collar.
 RepairLadder default_repair_ladder() {
   auto [early_separation, late_separation] = make_contact_separation_stages();
   RepairLadder ladder;
@@ -54,6 +72,7 @@ RepairLadder default_repair_ladder() {
   ladder.push_back(make_final_reproduction_stage());
   ladder.push_back(make_stretch_relief_stage());
   ladder.push_back(std::move(late_separation));
+  ladder.push_back(make_wider_collar_stage());
   return ladder;
 }
 

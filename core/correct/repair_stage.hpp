@@ -6,6 +6,7 @@
 
 #include "correct/candidate.hpp"
 #include "correct/correction_context.hpp"
+#include "correct/region_sweep.hpp"
 
 #include <posekit/correct.hpp>
 
@@ -41,6 +42,15 @@ class RepairStage {
 
 using RepairLadder = std::vector<std::unique_ptr<RepairStage>>;
 
+/// What a region-by-region stage proposes: `swept` where its sweep kept a region, none otherwise.
+/// The report gets the sweep's regions and vertices, and `note` when a region was kept.
+std::optional<Candidate> sweep_proposal(Candidate swept, const SweepOutcome& outcome, StageReport& report,
+                                        std::string note);
+
+/// What a stage that corrects the whole pose anew proposes: `current` moved to `pose`, reported as
+/// one region of the vertices that differ.
+Candidate whole_pose_proposal(const Candidate& current, const Eigen::MatrixX3d& pose, StageReport& report);
+
 // The stages, each defined in the file of its method.
 std::unique_ptr<RepairStage> make_field_stage();                // field_correction.cpp
 std::unique_ptr<RepairStage> make_fallback_stage();             // intersection_fallback.cpp
@@ -52,6 +62,7 @@ std::unique_ptr<RepairStage> make_halfway_stage();              // halfway_legs.
 std::unique_ptr<RepairStage> make_final_reproduction_stage();   // target_reproduction.cpp
 std::unique_ptr<RepairStage> make_stretch_relief_stage();       // stretch_relief.cpp
 std::unique_ptr<RepairStage> make_contact_push_stage();         // contact_separation.cpp
+std::unique_ptr<RepairStage> make_wider_collar_stage();         // wider_collar.cpp
 /// The contact separation early (kept only when clean, where the pose is entangled throughout) and
 /// late (competing as is), sharing one outcome: contact_separation.cpp.
 std::pair<std::unique_ptr<RepairStage>, std::unique_ptr<RepairStage>> make_contact_separation_stages();

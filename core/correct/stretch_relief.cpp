@@ -36,15 +36,12 @@ class StretchReliefStage final : public RepairStage {
     Candidate relieved = current;
     const int before = context.stretch.count(current.pose());
     const SweepOutcome outcome = relieve_stretch(relieved, context);
-    report.regions = outcome.regions;
-    report.vertices = outcome.vertices;
     const int after = context.stretch.count(relieved.pose());
     report.details = {{"stretched_faces_before", before}, {"stretched_faces_after", after}};
-    if (outcome.regions == 0) return std::nullopt;
-    report.note = std::to_string(outcome.regions) + " stretched region(s) (" + std::to_string(outcome.vertices) +
-                  " vertices) given the target's shape; stretched faces " + std::to_string(before) + " -> " +
-                  std::to_string(after);
-    return relieved;
+    return sweep_proposal(std::move(relieved), outcome, report,
+                          std::to_string(outcome.regions) + " stretched region(s) (" +
+                              std::to_string(outcome.vertices) + " vertices) given the target's shape; stretched faces " +
+                              std::to_string(before) + " -> " + std::to_string(after));
   }
 };
 

@@ -49,15 +49,11 @@ class RollbackStage final : public RepairStage {
     const PathLines& paths = context.field->paths;
     const RollbackOutcome outcome = roll_back_regions(
         moved, context, [&](const std::vector<int>& vertices, int segments) { return paths.sample(vertices, segments); });
-    report.regions = outcome.sweep.regions;
-    report.vertices = outcome.sweep.vertices;
     report.details = {{"earliest_time", outcome.earliest_time}};
-    if (outcome.sweep.regions == 0) return std::nullopt;
     std::ostringstream note;
     note << outcome.sweep.regions << " region(s) (" << outcome.sweep.vertices
          << " vertices) moved back along their path lines, to time " << outcome.earliest_time << " at the earliest";
-    report.note = note.str();
-    return moved;
+    return sweep_proposal(std::move(moved), outcome.sweep, report, note.str());
   }
 };
 

@@ -24,6 +24,9 @@ void add_generate_command(CLI::App& app, int& exit_status) {
   command->add_option("--ring-segments", options->arm.ring_segments,
                       "Vertices around each ring of the tube (>= 8, a multiple of 4)")
       ->capture_default_str();
+  command->add_option("--length", options->arm.cylinder_length,
+                      "Length of the tube between its caps, the joint at its middle (> 0): longer arms, same joint")
+      ->capture_default_str();
   command->callback([options, &exit_status] {
     exit_status = run_guarded([&] {
       for (const auto& file : write_demo_poses(options->arm, options->output_dir, options->format)) {

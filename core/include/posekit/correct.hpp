@@ -65,8 +65,9 @@ struct CorrectionOptions {
   /// method. The repair stages are the same.
   bool whole_mesh = false;
   /// Rings of constrained vertices around each region's unconstrained ones that pin its field
-  /// (>= 1; docs/correct.md tells how the default was measured).
-  int collar_rings = 8;
+  /// (>= 1; docs/correct.md tells how the default was measured). Where faces remain, the
+  /// `wider-collar` stage corrects again with 8.
+  int collar_rings = 3;
   /// Reproduction of the target: the integrated result is kept within `reproduction_rings` rings of
   /// the vertices near an intersection in some tested pose (the reference's own included) and
   /// blended into the target over `blend_rings` more; elsewhere the result is the target itself,

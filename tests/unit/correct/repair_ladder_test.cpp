@@ -25,12 +25,14 @@ const std::vector<std::string> kLadderOrder = [] {
   order.insert(order.end(), kLocalRepairs.begin(), kLocalRepairs.end());
   order.push_back("halfway");
   order.insert(order.end(), kLocalRepairs.begin(), kLocalRepairs.end());
-  for (const char* name : {"final-reproduction", "stretch-relief", "contact-separation"}) order.push_back(name);
+  for (const char* name : {"final-reproduction", "stretch-relief", "contact-separation", "wider-collar"}) {
+    order.push_back(name);
+  }
   return order;
 }();
 const std::vector<std::string> kStageNames = {
     "field",      "fallback",     "rollback", "reference-zones",    "contact-separation", "local-correction",
-    "relaxation", "contact-push", "halfway",  "final-reproduction", "stretch-relief"};
+    "relaxation", "contact-push", "halfway",  "final-reproduction", "stretch-relief",     "wider-collar"};
 
 // A stage that records when it ran and proposes a fixed pose.
 class RecordingStage final : public RepairStage {
@@ -135,6 +137,8 @@ TEST(RepairLadder, NestedScopesLeaveOutTheirStages) {
   EXPECT_FALSE(runs_in("halfway", CorrectionScope::region));
   EXPECT_FALSE(runs_in("contact-separation", CorrectionScope::leg));
   EXPECT_TRUE(runs_in("rollback", CorrectionScope::region));
+  EXPECT_FALSE(runs_in("wider-collar", CorrectionScope::leg));
+  EXPECT_FALSE(runs_in("wider-collar", CorrectionScope::region));
 }
 
 // A whole correction reports every stage of the ladder in order, with what it did.

@@ -1,0 +1,45 @@
+// The whole correction again with a wider collar around the regions of interest. A narrow collar
+// keeps the fields small and fast, but where a region's field is pinned too close to what
+// intersects, its path lines can bend parts through each other that a wider collar holds apart;
+// the costly stages after it then work on what the field should have freed. Where faces remain,
+// the correction runs once more with the collar that freed every pose we measured
+// (docs/correct.md), and the better of the two is kept.
+#include "correct/nested_correction.hpp"
+#include "correct/repair_stage.hpp"
+
+#include <string>
+
+namespace posekit::detail {
+namespace {
+
+constexpr int kWideCollarRings = 8;
+
+class WiderCollarStage final : public RepairStage {
+ public:
+  WiderCollarStage()
+      : RepairStage({"wider-collar", "correct again with a wider collar of constrained vertices around each region"},
+                    scope_bit(CorrectionScope::whole_pose)) {}
+
+  bool enabled(const CorrectionOptions& options) const override {
+    return RepairStage::enabled(options) && !options.whole_mesh && options.collar_rings < kWideCollarRings;
+  }
+
+  std::optional<Candidate> run(const Candidate& current, CorrectionContext& context, StageReport& report) override {
+    CorrectionOptions wider = context.options;
+    wider.collar_rings = kWideCollarRings;
+    CorrectionReport nested;
+    const Eigen::MatrixX3d corrected = correct_in_scope(context.reference, context.target, context.faces,
+                                                        context.device, wider, CorrectionScope::whole_pose, &nested);
+    const int new_faces = nested.result.new_intersecting_faces;
+    report.details = {{"collar_rings", kWideCollarRings}, {"new_faces", new_faces}};
+    report.note = "corrected again with a collar of " + std::to_string(kWideCollarRings) + " rings (" +
+                  std::to_string(new_faces) + " new intersecting faces)";
+    return whole_pose_proposal(current, corrected, report);
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<RepairStage> make_wider_collar_stage() { return std::make_unique<WiderCollarStage>(); }
+
+}  // namespace posekit::detail
