@@ -139,6 +139,29 @@ TEST(Cli, GeneratedDemoPosesIntersectOnlyWhenBent) {
   EXPECT_GE(bent_poses, 1);
 }
 
+// A longer arm has more rings along the tube; a length shorter than the joint's blend is refused.
+TEST(Cli, GeneratedArmGrowsWithItsLength) {
+  TemporaryDirectory standard;
+  TemporaryDirectory longer;
+  ASSERT_EQ(run_posekit({"generate", "--output-dir", standard.path().string(), "--angles", "90"}).exit_status, 0);
+  const CommandResult generated =
+      run_posekit({"generate", "--output-dir", longer.path().string(), "--angles", "90", "--length", "12"});
+  ASSERT_EQ(generated.exit_status, 0) << generated.err;
+  const auto vertices_of = [](const std::filesystem::path& folder) {
+    const CommandResult check = run_posekit({"check", (folder / "arm-rest.obj").string(), "--json"});
+    EXPECT_EQ(check.exit_status, 0) << check.err;
+    return nlohmann::json::parse(check.out).at("vertices").get<int>();
+  };
+  EXPECT_GT(vertices_of(longer.path()), 2 * vertices_of(standard.path()));
+
+  TemporaryDirectory refused;
+  const CommandResult too_short =
+      run_posekit({"generate", "--output-dir", refused.path().string(), "--length", "0.5"});
+  EXPECT_NE(too_short.exit_status, 0);
+  EXPECT_NE(too_short.err.find("--length"), std::string::npos) << too_short.err;
+  EXPECT_TRUE(folder_contents(refused.path()).empty());
+}
+
 TEST(Cli, CheckCountsLionIntersections) {
   POSEKIT_REQUIRE_SHARED_POSE(target, "lion-poses/lion-01.obj");
   POSEKIT_REQUIRE_SHARED_POSE(reference, "lion-poses/lion-reference.obj");

@@ -25,7 +25,9 @@ void add_generate_command(CLI::App& app, int& exit_status) {
                       "Vertices around each ring of the tube (>= 8, a multiple of 4)")
       ->capture_default_str();
   command->add_option("--length", options->arm.cylinder_length,
-                      "Length of the tube between its caps, the joint at its middle (> 0): longer arms, same joint")
+                      "Length of the tube between its caps, the joint at its middle (at least the joint's blend "
+                      "width, 1): longer arms, same joint")
+      ->check(CLI::Range(1.0, 1.0e6))
       ->capture_default_str();
   command->callback([options, &exit_status] {
     exit_status = run_guarded([&] {
