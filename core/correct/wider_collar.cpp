@@ -27,14 +27,15 @@ class WiderCollarStage final : public RepairStage {
   std::optional<Candidate> run(const Candidate& current, CorrectionContext& context, StageReport& report) override {
     CorrectionOptions wider = context.options;
     wider.collar_rings = kWideCollarRings;
-    CorrectionReport nested;
     const Eigen::MatrixX3d corrected = correct_in_scope(context.reference, context.target, context.faces,
-                                                        context.device, wider, CorrectionScope::whole_pose, &nested);
-    const int new_faces = nested.result.new_intersecting_faces;
+                                                        context.device, wider, CorrectionScope::whole_pose);
+    // The proposal's own count: the nested run need not measure its result a second time.
+    Candidate proposal = whole_pose_proposal(current, corrected, report);
+    const int new_faces = proposal.new_face_count();
     report.details = {{"collar_rings", kWideCollarRings}, {"new_faces", new_faces}};
     report.note = "corrected again with a collar of " + std::to_string(kWideCollarRings) + " rings (" +
                   std::to_string(new_faces) + " new intersecting faces)";
-    return whole_pose_proposal(current, corrected, report);
+    return proposal;
   }
 };
 
