@@ -1,5 +1,6 @@
 #include "correct/path_lines.hpp"
 
+#include <algorithm>
 #include <utility>
 
 namespace posekit::detail {
@@ -15,6 +16,46 @@ PathLines::PathLines(const Eigen::MatrixX3d& reference, std::shared_ptr<const Ve
       integration_(integration) {}
 
 std::vector<Eigen::MatrixX3d> PathLines::sample(const std::vector<int>& vertices, int segments) const {
+  const auto vertex_count = static_cast<size_t>(reference_.rows());
+  const auto cached = [&]() -> Sampled* {
+    for (Sampled& s : cache_->by_segments) {
+      if (s.segments == segments) return &s;
+    }
+    return nullptr;
+  };
+  std::vector<int> missing;
+  {
+    std::lock_guard<std::mutex> lock(cache_->mutex);
+    const Sampled* sampled = cached();
+    for (int v : vertices) {
+      if (sampled == nullptr || sampled->known[static_cast<size_t>(v)] == 0) missing.push_back(v);
+    }
+  }
+  std::sort(missing.begin(), missing.end());
+  missing.erase(std::unique(missing.begin(), missing.end()), missing.end());
+  // Integrated outside the lock; two callers asking for the same vertex at once compute the same rows.
+  const std::vector<Eigen::MatrixX3d> computed = integrate(missing, segments);
+  std::lock_guard<std::mutex> lock(cache_->mutex);
+  Sampled* sampled = cached();
+  if (sampled == nullptr) {
+    cache_->by_segments.emplace_back();
+    sampled = &cache_->by_segments.back();
+    sampled->segments = segments;
+    sampled->known.assign(vertex_count, 0);
+    sampled->positions.assign(static_cast<size_t>(segments) + 1, Eigen::MatrixX3d(reference_.rows(), 3));
+  }
+  for (size_t i = 0; i < missing.size(); ++i) {
+    for (int k = 0; k <= segments; ++k) {
+      sampled->positions[static_cast<size_t>(k)].row(missing[i]) = computed[static_cast<size_t>(k)].row(static_cast<Eigen::Index>(i));
+    }
+    sampled->known[static_cast<size_t>(missing[i])] = 1;
+  }
+  std::vector<Eigen::MatrixX3d> samples(static_cast<size_t>(segments) + 1);
+  for (int k = 0; k <= segments; ++k) samples[static_cast<size_t>(k)] = sampled->positions[static_cast<size_t>(k)](vertices, Eigen::all);
+  return samples;
+}
+
+std::vector<Eigen::MatrixX3d> PathLines::integrate(const std::vector<int>& vertices, int segments) const {
   const auto count = static_cast<Eigen::Index>(vertices.size());
   std::vector<Eigen::MatrixX3d> samples(static_cast<size_t>(segments) + 1, Eigen::MatrixX3d(count, 3));
   // Rows of `vertices` by the field they move through; -1 (no field) first.

@@ -30,7 +30,8 @@ class PathLines {
             std::vector<TimedField> fields, std::vector<int> field_of_vertex, Device& device, Rk45Options integration);
 
   /// Positions of `vertices` at times k / segments of the motion, k = 0 .. segments: element k is
-  /// #vertices by 3, in the order given.
+  /// #vertices by 3, in the order given. Each vertex is integrated once per `segments`: the repairs
+  /// that move regions back in time ask again for the vertices of overlapping regions.
   std::vector<Eigen::MatrixX3d> sample(const std::vector<int>& vertices, int segments) const;
 
  private:
@@ -38,6 +39,17 @@ class PathLines {
     std::mutex mutex;
     std::vector<std::unique_ptr<DeviceField>> fields;
   };
+  /// Every vertex's positions at the times of one `segments`, filled as vertices are asked for.
+  struct Sampled {
+    int segments = 0;
+    std::vector<char> known;                 ///< per vertex
+    std::vector<Eigen::MatrixX3d> positions;  ///< per time, #V by 3
+  };
+  struct SampleCache {
+    std::mutex mutex;
+    std::vector<Sampled> by_segments;
+  };
+  std::vector<Eigen::MatrixX3d> integrate(const std::vector<int>& vertices, int segments) const;
   Eigen::MatrixX3d reference_;
   std::shared_ptr<const VertexTrajectories> trajectories_;
   std::vector<TimedField> fields_;
@@ -45,6 +57,7 @@ class PathLines {
   Device* device_ = nullptr;
   Rk45Options integration_;
   std::shared_ptr<Uploaded> uploaded_ = std::make_shared<Uploaded>();
+  std::shared_ptr<SampleCache> cache_ = std::make_shared<SampleCache>();
 };
 
 }  // namespace posekit::detail

@@ -3,6 +3,7 @@
 #include "geometry/vertex_regions.hpp"
 
 #include <algorithm>
+#include <map>
 
 namespace posekit::detail {
 SweepGoal fewer_new_faces() {
@@ -12,11 +13,28 @@ SweepGoal fewer_new_faces() {
           }};
 }
 
+namespace {
+
+// A repair sees its region and what lies a few rings around it (the rim it blends into, the anchors
+// it is placed by); a region that failed is tried again only once something this near has moved.
+constexpr int kRepairReachRings = 8;
+
+}  // namespace
+
 SweepOutcome sweep_regions(Candidate& candidate, const CorrectionContext& context, const RegionSweep& sweep,
                            const RegionRepair& repair) {
   const auto vertex_count = static_cast<size_t>(context.vertex_count());
   SweepOutcome outcome;
   std::vector<char> moved(vertex_count, 0);
+  // Regions that failed, by their vertices, with the count of kept proposals when they failed; per
+  // vertex, the count of kept proposals when something within reach of it last moved.
+  std::map<std::vector<int>, int> failed;
+  std::vector<int> last_disturbed(vertex_count, 0);
+  int kept = 0;
+  const auto unchanged_since = [&](const std::vector<int>& region, int since) {
+    return std::all_of(region.begin(), region.end(),
+                       [&](int v) { return last_disturbed[static_cast<size_t>(v)] <= since; });
+  };
   for (int round = 0; round < sweep.rounds; ++round) {
     const int kept_before = outcome.regions;
     for (const int rings : sweep.seed_rings) {
@@ -35,9 +53,23 @@ SweepOutcome sweep_regions(Candidate& candidate, const CorrectionContext& contex
         std::vector<char> inside(vertex_count, 0);
         for (int v : region) inside[static_cast<size_t>(v)] = 1;
         if (!touches(inside, to_mend, context.faces)) continue;
+        const auto previous = failed.find(region);
+        if (previous != failed.end() && unchanged_since(region, previous->second)) continue;
         std::optional<Probe> proposal = repair(region, candidate);
-        if (!proposal || !sweep.goal.improves(*proposal, candidate)) continue;
-        for (int v : differing_vertices(proposal->pose, candidate.pose())) moved[static_cast<size_t>(v)] = 1;
+        if (!proposal || !sweep.goal.improves(*proposal, candidate)) {
+          failed[region] = kept;
+          continue;
+        }
+        std::vector<char> changed(vertex_count, 0);
+        for (int v : differing_vertices(proposal->pose, candidate.pose())) {
+          moved[static_cast<size_t>(v)] = 1;
+          changed[static_cast<size_t>(v)] = 1;
+        }
+        ++kept;
+        const std::vector<char> disturbed = within_rings(changed, context.neighbours, kRepairReachRings);
+        for (size_t v = 0; v < vertex_count; ++v) {
+          if (disturbed[v] != 0) last_disturbed[v] = kept;
+        }
         candidate.accept(std::move(*proposal));
         ++outcome.regions;
         to_mend = sweep.goal.faces_to_mend(candidate);
