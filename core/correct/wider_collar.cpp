@@ -1,9 +1,9 @@
 // The whole correction again with a wider collar around the regions of interest. A narrow collar
 // keeps the fields small and fast, but where a region's field is pinned too close to what
 // intersects, its path lines can bend parts through each other that a wider collar holds apart;
-// the costly stages after it then work on what the field should have freed. Where faces remain,
-// the correction runs once more with the collar that freed every pose we measured
-// (docs/correct.md), and the better of the two is kept.
+// the costly stages after it then work on what the field should have freed. Where faces remain or
+// the surface tore, the correction runs once more with the collar that freed every pose we
+// measured (docs/correct.md), and the better of the two is kept.
 #include "correct/nested_correction.hpp"
 #include "correct/repair_stage.hpp"
 
@@ -22,6 +22,12 @@ class WiderCollarStage final : public RepairStage {
 
   bool enabled(const CorrectionOptions& options) const override {
     return RepairStage::enabled(options) && !options.whole_mesh && options.collar_rings < kWideCollarRings;
+  }
+
+  // Also where the candidate tore the surface (faces over three times as long as in both poses): a
+  // field pinned close to what it moves bends its collar sharply.
+  bool wanted(const Candidate& current, const CorrectionContext& context) const override {
+    return current.new_face_count() > 0 || context.stretch.count(current.pose(), kStronglyStretchedFactor) > 0;
   }
 
   std::optional<Candidate> run(const Candidate& current, CorrectionContext& context, StageReport& report) override {
