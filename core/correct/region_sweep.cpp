@@ -26,11 +26,10 @@ SweepOutcome sweep_regions(Candidate& candidate, const CorrectionContext& contex
   const auto vertex_count = static_cast<size_t>(context.vertex_count());
   SweepOutcome outcome;
   std::vector<char> moved(vertex_count, 0);
-  // Regions that failed, by their vertices, with the count of kept proposals when they failed; per
-  // vertex, the count of kept proposals when something within reach of it last moved.
+  // Regions that failed, by their vertices, with the count of kept proposals (outcome.regions) when
+  // they failed; per vertex, that count when something within reach of it last moved.
   std::map<std::vector<int>, int> failed;
   std::vector<int> last_disturbed(vertex_count, 0);
-  int kept = 0;
   const auto unchanged_since = [&](const std::vector<int>& region, int since) {
     return std::all_of(region.begin(), region.end(),
                        [&](int v) { return last_disturbed[static_cast<size_t>(v)] <= since; });
@@ -57,7 +56,7 @@ SweepOutcome sweep_regions(Candidate& candidate, const CorrectionContext& contex
         if (previous != failed.end() && unchanged_since(region, previous->second)) continue;
         std::optional<Probe> proposal = repair(region, candidate);
         if (!proposal || !sweep.goal.improves(*proposal, candidate)) {
-          failed[region] = kept;
+          failed[region] = outcome.regions;
           continue;
         }
         std::vector<char> changed(vertex_count, 0);
@@ -65,13 +64,12 @@ SweepOutcome sweep_regions(Candidate& candidate, const CorrectionContext& contex
           moved[static_cast<size_t>(v)] = 1;
           changed[static_cast<size_t>(v)] = 1;
         }
-        ++kept;
-        const std::vector<char> disturbed = within_rings(changed, context.neighbours, kRepairReachRings);
-        for (size_t v = 0; v < vertex_count; ++v) {
-          if (disturbed[v] != 0) last_disturbed[v] = kept;
-        }
         candidate.accept(std::move(*proposal));
         ++outcome.regions;
+        const std::vector<char> disturbed = within_rings(changed, context.neighbours, kRepairReachRings);
+        for (size_t v = 0; v < vertex_count; ++v) {
+          if (disturbed[v] != 0) last_disturbed[v] = outcome.regions;
+        }
         to_mend = sweep.goal.faces_to_mend(candidate);
       }
     }

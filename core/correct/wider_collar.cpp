@@ -27,7 +27,8 @@ class WiderCollarStage final : public RepairStage {
   // Also where the candidate tore the surface (faces over three times as long as in both poses): a
   // field pinned close to what it moves bends its collar sharply.
   bool wanted(const Candidate& current, const CorrectionContext& context) const override {
-    return current.new_face_count() > 0 || context.stretch.count(current.pose(), kStronglyStretchedFactor) > 0;
+    return RepairStage::wanted(current, context) ||
+           context.stretch.count(current.pose(), kStronglyStretchedFactor) > 0;
   }
 
   std::optional<Candidate> run(const Candidate& current, CorrectionContext& context, StageReport& report) override {
