@@ -1,4 +1,4 @@
-// The GLSL mirror of core/include/posekit/kernel_math.h, which GLSL cannot include. Every function
+// The GLSL mirror of backends/common/kernel_math.h, which GLSL cannot include. Every function
 // here carries the name of the C function it mirrors and performs the same operations in the same
 // order; the constants come from kernel_constants.glsl, generated at build time from the C header's
 // PK_KERNEL_DOUBLE_CONSTANTS / PK_KERNEL_WORD_CONSTANTS lists, so both sides use identical bits.

@@ -12,7 +12,6 @@
 #include <tbb/version.h>
 
 #include <algorithm>
-#include <atomic>
 #include <exception>
 #include <fstream>
 #include <string>
@@ -20,12 +19,6 @@
 namespace posekit {
 namespace cpu {
 namespace {
-
-// Fields remember the device they were uploaded to by this number; an address could be reused.
-std::uint64_t next_device_id() {
-  static std::atomic<std::uint64_t> counter{0};
-  return ++counter;
-}
 
 int hardware_threads() { return std::max(1, tbb::info::default_concurrency()); }
 
@@ -59,49 +52,39 @@ DeviceInfo describe(int threads, KernelIsa isa) {
 
 class CpuDevice final : public Device {
  public:
+  // Concurrent: the arena takes work from any number of callers' threads.
   CpuDevice(int threads, KernelIsa isa)
-      : threads_(threads), isa_(isa), id_(next_device_id()), arena_(threads) {}
+      : Device(Calls::concurrent), threads_(threads), isa_(isa), arena_(threads) {}
 
   DeviceInfo info() const override { return describe(threads_, isa_); }
 
-  bool supports(DeviceOperation /*operation*/) const override { return true; }
-
-  void assemble_rbf_block(const Eigen::Ref<const Points4>& points,
-                          const Eigen::Ref<const Points4>& centers, bool with_polynomial,
-                          Eigen::Ref<Eigen::MatrixXd> block) override {
+ protected:
+  void do_assemble_rbf_block(const Eigen::Ref<const Points4>& points,
+                             const Eigen::Ref<const Points4>& centers, bool with_polynomial,
+                             Eigen::Ref<Eigen::MatrixXd> block) override {
     cpu::assemble_rbf_block(execution(), points, centers, with_polynomial, block);
   }
 
-  std::unique_ptr<DeviceField> upload_field(const RbfField& field) override {
-    return std::make_unique<CpuField>(field, id_);
+  std::unique_ptr<DeviceField> do_upload_field(const RbfField& field) override {
+    return std::make_unique<CpuField>(field, id());
   }
 
-  void evaluate_rbf(const DeviceField& field, const Eigen::Ref<const Points4>& points,
-                    Eigen::Ref<Eigen::MatrixX3d> values) override {
-    cpu::evaluate_rbf(execution(), own_field(field, "evaluate_rbf"), points, values);
+  void do_evaluate_rbf(const DeviceField& field, const Eigen::Ref<const Points4>& points,
+                       Eigen::Ref<Eigen::MatrixX3d> values) override {
+    cpu::evaluate_rbf(execution(), uploaded<CpuField>(field), points, values);
   }
 
-  std::vector<Rk45ParticleStats> integrate_rk45(const DeviceField& field,
-                                                Eigen::Ref<Eigen::MatrixX3d> positions,
-                                                const Rk45Options& options) override {
-    return cpu::integrate_rk45(execution(), own_field(field, "integrate_rk45"), positions, options);
+  std::vector<Rk45ParticleStats> do_integrate_rk45(const DeviceField& field,
+                                                   Eigen::Ref<Eigen::MatrixX3d> positions,
+                                                   const Rk45Options& options) override {
+    return cpu::integrate_rk45(execution(), uploaded<CpuField>(field), positions, options);
   }
 
  private:
   CpuExecution execution() { return {arena_, isa_}; }
 
-  const CpuField& own_field(const DeviceField& field, const char* operation) const {
-    const auto* cpu_field = dynamic_cast<const CpuField*>(&field);
-    if (cpu_field == nullptr || cpu_field->device_id() != id_) {
-      throw ArgumentError(std::string(operation) +
-                          ": field was uploaded to another device (upload it to this one)");
-    }
-    return *cpu_field;
-  }
-
   int threads_;
   KernelIsa isa_;
-  std::uint64_t id_;
   tbb::task_arena arena_;
 };
 

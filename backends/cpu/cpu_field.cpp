@@ -1,19 +1,12 @@
 #include "cpu_field.hpp"
 
-#include <posekit/kernel_math.h>
-#include <posekit/error.hpp>
-
-#include <string>
+#include "common/kernel_math.h"
 
 namespace posekit::cpu {
 
 CpuField::CpuField(const RbfField& field, std::uint64_t device_id)
-    : polynomial_(field.polynomial), device_id_(device_id) {
-  if (field.weights.rows() != field.centers.rows()) {
-    throw ArgumentError("upload_field: field.weights has " + std::to_string(field.weights.rows()) +
-                        " rows but field.centers has " + std::to_string(field.centers.rows()) +
-                        " (one weight row per center)");
-  }
+    : DeviceField(device_id, static_cast<int>(field.centers.rows())),
+      polynomial_(field.polynomial) {
   columns_.resize(field.centers.rows(), 7);
   columns_.leftCols<4>() = field.centers;
   columns_.rightCols<3>() = field.weights;

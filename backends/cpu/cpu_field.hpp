@@ -13,12 +13,8 @@ namespace posekit::cpu {
 
 class CpuField final : public DeviceField {
  public:
-  /// Copies `field`; device_id names the device that owns it. Throws ArgumentError when the
-  /// weights do not have one row per center.
+  /// Copies `field` (checked by Device::upload_field) for the device numbered device_id.
   CpuField(const RbfField& field, std::uint64_t device_id);
-
-  int center_count() const override { return static_cast<int>(columns_.rows()); }
-  std::uint64_t device_id() const { return device_id_; }
 
   Columns4 centers() const {
     return {columns_.col(0).data(), columns_.col(1).data(), columns_.col(2).data(),
@@ -35,7 +31,6 @@ class CpuField final : public DeviceField {
   // Columns: center x, y, z, t, then weight x, y, z. Column-major, so each is contiguous.
   Eigen::Matrix<double, Eigen::Dynamic, 7> columns_;
   RbfPolynomial polynomial_;
-  std::uint64_t device_id_;
 };
 
 }  // namespace posekit::cpu

@@ -1,4 +1,5 @@
-// The CPU backend's three operations, one file each; CpuDevice forwards to them.
+// The CPU backend's three operations, one file each; CpuDevice forwards to them the arguments
+// that Device's front has checked.
 #pragma once
 
 #include "cpu_field.hpp"

@@ -4,7 +4,7 @@
 #include "cpu_operations.hpp"
 #include "rbf_kernels.hpp"
 
-#include <posekit/kernel_math.h>
+#include "common/kernel_math.h"
 #include <posekit/error.hpp>
 
 #include <tbb/blocked_range.h>
@@ -78,8 +78,6 @@ void assemble_rbf_block(const CpuExecution& execution, const Eigen::Ref<const Po
                         Eigen::Ref<Eigen::MatrixXd> block) {
   const Eigen::Index rows = points.rows();
   const Eigen::Index center_count = centers.rows();
-  const Eigen::Index columns = validate_rbf_block_shape(rows, center_count, with_polynomial, block);
-  if (rows == 0 || columns == 0) return;
   const PhiColumnKernel kernel = phi_column_kernel(execution.isa);
   execution.arena.execute([&] {
     if (center_count > 0) {

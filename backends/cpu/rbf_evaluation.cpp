@@ -3,7 +3,7 @@
 #include "cpu_operations.hpp"
 #include "rbf_kernels.hpp"
 
-#include <posekit/kernel_math.h>
+#include "common/kernel_math.h"
 #include <posekit/error.hpp>
 
 #include <tbb/blocked_range.h>
@@ -83,9 +83,7 @@ RbfSumKernel rbf_sum_kernel(KernelIsa isa) {
 
 void evaluate_rbf(const CpuExecution& execution, const CpuField& field,
                   const Eigen::Ref<const Points4>& points, Eigen::Ref<Eigen::MatrixX3d> values) {
-  validate_rbf_values_shape(points.rows(), values);
   const Eigen::Index count = points.rows();
-  if (count == 0) return;
   const RbfSumKernel kernel = rbf_sum_kernel(execution.isa);
   const Eigen::Index grain = std::max<Eigen::Index>(
       1, kEvaluationsPerTask / std::max<Eigen::Index>(1, field.center_count()));

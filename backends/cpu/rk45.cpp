@@ -4,7 +4,7 @@
 #include "cpu_operations.hpp"
 #include "rbf_kernels.hpp"
 
-#include <posekit/kernel_math.h>
+#include "common/kernel_math.h"
 #include <posekit/error.hpp>
 
 #include <tbb/blocked_range.h>
@@ -45,10 +45,8 @@ Rk45ParticleStats integrate_particle(const CpuField& field, RbfSumKernel kernel,
 std::vector<Rk45ParticleStats> integrate_rk45(const CpuExecution& execution, const CpuField& field,
                                               Eigen::Ref<Eigen::MatrixX3d> positions,
                                               const Rk45Options& options) {
-  validate_rk45_options(options);
   const Eigen::Index count = positions.rows();
   std::vector<Rk45ParticleStats> stats(static_cast<std::size_t>(count));
-  if (count == 0) return stats;
   const RbfSumKernel kernel = rbf_sum_kernel(execution.isa);
   // Grain 1: particles need very different numbers of steps, so let idle threads take single ones.
   execution.arena.execute([&] {

@@ -13,24 +13,17 @@
 #include <posekit/error.hpp>
 
 #include <algorithm>
-#include <atomic>
-#include <mutex>
 #include <string>
 
 namespace posekit::cuda {
 namespace {
 
-std::uint64_t next_device_id() {
-  static std::atomic<std::uint64_t> counter{0};
-  return ++counter;
-}
-
 class CudaDevice final : public Device {
  public:
   CudaDevice(const DiscoveredDevice& found, const CudaDeviceOptions& options)
-      : info_(describe(found)) {
+      : Device(Calls::serialized), info_(describe(found)) {
     context_.ordinal = found.ordinal;
-    context_.id = next_device_id();
+    context_.id = id();
     context_.make_current();
     // Every kernel must have code for this GPU; the runtime loads modules lazily, so ask now
     // rather than at the first launch.
@@ -60,58 +53,39 @@ class CudaDevice final : public Device {
     cudaGetLastError();
   }
 
-  CudaDevice(const CudaDevice&) = delete;
-  CudaDevice& operator=(const CudaDevice&) = delete;
-
   DeviceInfo info() const override { return info_; }
 
-  bool supports(DeviceOperation /*operation*/) const override { return true; }
-
-  void assemble_rbf_block(const Eigen::Ref<const Points4>& points,
-                          const Eigen::Ref<const Points4>& centers, bool with_polynomial,
-                          Eigen::Ref<Eigen::MatrixXd> block) override {
-    const std::lock_guard<std::mutex> lock(mutex_);
+  // Serialized: the operations share one stream and scratch buffers; each makes the device
+  // current on the calling thread first.
+ protected:
+  void do_assemble_rbf_block(const Eigen::Ref<const Points4>& points,
+                             const Eigen::Ref<const Points4>& centers, bool with_polynomial,
+                             Eigen::Ref<Eigen::MatrixXd> block) override {
     context_.make_current();
     cuda::assemble_rbf_block(context_, points, centers, with_polynomial, block);
   }
 
-  std::unique_ptr<DeviceField> upload_field(const RbfField& field) override {
-    const std::lock_guard<std::mutex> lock(mutex_);
+  std::unique_ptr<DeviceField> do_upload_field(const RbfField& field) override {
     context_.make_current();
     return std::make_unique<CudaField>(context_, field);
   }
 
-  void evaluate_rbf(const DeviceField& field, const Eigen::Ref<const Points4>& points,
-                    Eigen::Ref<Eigen::MatrixX3d> values) override {
-    const CudaField& own = own_field(field, "evaluate_rbf");
-    const std::lock_guard<std::mutex> lock(mutex_);
+  void do_evaluate_rbf(const DeviceField& field, const Eigen::Ref<const Points4>& points,
+                       Eigen::Ref<Eigen::MatrixX3d> values) override {
     context_.make_current();
-    cuda::evaluate_rbf(context_, own, points, values);
+    cuda::evaluate_rbf(context_, uploaded<CudaField>(field), points, values);
   }
 
-  std::vector<Rk45ParticleStats> integrate_rk45(const DeviceField& field,
-                                                Eigen::Ref<Eigen::MatrixX3d> positions,
-                                                const Rk45Options& options) override {
-    validate_rk45_options(options);
-    const CudaField& own = own_field(field, "integrate_rk45");
-    const std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<Rk45ParticleStats> do_integrate_rk45(const DeviceField& field,
+                                                   Eigen::Ref<Eigen::MatrixX3d> positions,
+                                                   const Rk45Options& options) override {
     context_.make_current();
-    return cuda::integrate_rk45(context_, own, positions, options);
+    return cuda::integrate_rk45(context_, uploaded<CudaField>(field), positions, options);
   }
 
  private:
-  const CudaField& own_field(const DeviceField& field, const char* operation) const {
-    const auto* cuda_field = dynamic_cast<const CudaField*>(&field);
-    if (cuda_field == nullptr || cuda_field->device_id() != context_.id) {
-      throw ArgumentError(std::string(operation) +
-                          ": field was uploaded to another device (upload it to this one)");
-    }
-    return *cuda_field;
-  }
-
   DeviceInfo info_;
   CudaContext context_;
-  std::mutex mutex_;
 };
 
 }  // namespace

@@ -10,19 +10,13 @@
 namespace posekit::cuda {
 
 CudaField::CudaField(const CudaContext& context, const RbfField& field)
-    : device_id_(context.id) {
+    : DeviceField(context.id, static_cast<int>(field.centers.rows())) {
   const Eigen::Index count = field.centers.rows();
-  if (field.weights.rows() != count) {
-    throw ArgumentError("upload_field: field.weights has " + std::to_string(field.weights.rows()) +
-                        " rows but field.centers has " + std::to_string(count) +
-                        " (one weight row per center)");
-  }
   if (count > kMaxChunkItems) {
     throw ArgumentError("upload_field: field.centers has " + std::to_string(count) +
                         " rows, more than the CUDA kernels index (" +
                         std::to_string(kMaxChunkItems) + ")");
   }
-  center_count_ = static_cast<int>(count);
   const std::size_t doubles = static_cast<std::size_t>(7 * count + 3 * kRbfPolynomialTerms);
   memory_.reserve(doubles * sizeof(double), "field");
   double* columns = memory_.as<double>();
@@ -44,8 +38,8 @@ CudaField::CudaField(const CudaContext& context, const RbfField& field)
 FieldView CudaField::view() const {
   FieldView view;
   view.columns = memory_.as<const double>();
-  view.polynomial = view.columns + 7 * static_cast<std::size_t>(center_count_);
-  view.count = center_count_;
+  view.polynomial = view.columns + 7 * static_cast<std::size_t>(center_count());
+  view.count = center_count();
   return view;
 }
 

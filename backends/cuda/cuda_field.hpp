@@ -14,18 +14,14 @@ namespace posekit::cuda {
 
 class CudaField final : public DeviceField {
  public:
-  /// Uploads `field`. Throws ArgumentError when the weights do not have one row per center or
-  /// there are more centers than a kernel indexes, DeviceError when the device refuses the memory.
+  /// Uploads `field` (checked by Device::upload_field). Throws ArgumentError when there are more
+  /// centers than a kernel indexes, DeviceError when the device refuses the memory.
   CudaField(const CudaContext& context, const RbfField& field);
 
-  int center_count() const override { return center_count_; }
-  std::uint64_t device_id() const { return device_id_; }
   FieldView view() const;
 
  private:
   DeviceBuffer memory_;
-  int center_count_ = 0;
-  std::uint64_t device_id_ = 0;
 };
 
 }  // namespace posekit::cuda

@@ -18,14 +18,13 @@ void assemble_rbf_block(CudaContext& context, const Eigen::Ref<const Points4>& p
                         Eigen::Ref<Eigen::MatrixXd> block) {
   const Eigen::Index rows = points.rows();
   const Eigen::Index center_count = centers.rows();
-  const Eigen::Index columns = validate_rbf_block_shape(rows, center_count, with_polynomial, block);
-  if (rows == 0 || columns == 0) return;
+  const Eigen::Index columns = center_count + (with_polynomial ? kRbfPolynomialTerms : 0);
   if (center_count > kMaxChunkItems) {
     throw ArgumentError("assemble_rbf_block: centers has " + std::to_string(center_count) +
                         " rows, more than the CUDA kernels index (" +
                         std::to_string(kMaxChunkItems) + ")");
   }
-  const TileShape tile = assembly_tiles(rows, columns, context.max_chunk_bytes);
+  const TileShape tile = assembly_tiles(chunk_limits(context.max_chunk_bytes), rows, columns);
   double* const point_buffer =
       context.scratch_buffer(Scratch::points, 4 * sizeof(double) * tile.rows).as<double>();
   double* const center_buffer =

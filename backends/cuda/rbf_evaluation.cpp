@@ -11,12 +11,10 @@ namespace posekit::cuda {
 
 void evaluate_rbf(CudaContext& context, const CudaField& field,
                   const Eigen::Ref<const Points4>& points, Eigen::Ref<Eigen::MatrixX3d> values) {
-  validate_rbf_values_shape(points.rows(), values);
   const Eigen::Index count = points.rows();
-  if (count == 0) return;
   // The points' four columns are the larger of the two buffers.
   const Eigen::Index capacity =
-      std::min(count, items_per_chunk(context.max_chunk_bytes, 4 * sizeof(double)));
+      std::min(count, items_per_chunk(chunk_limits(context.max_chunk_bytes), 4 * sizeof(double)));
   double* const point_buffer =
       context.scratch_buffer(Scratch::points, 4 * sizeof(double) * capacity).as<double>();
   double* const value_buffer =

@@ -7,7 +7,7 @@
 #include "cuda_kernels.hpp"
 #include "cuda_operations.hpp"
 
-#include <posekit/kernel_math.h>
+#include "common/kernel_math.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -25,10 +25,9 @@ std::vector<Rk45ParticleStats> integrate_rk45(CudaContext& context, const CudaFi
                                               const Rk45Options& options) {
   const Eigen::Index count = positions.rows();
   std::vector<Rk45ParticleStats> stats(static_cast<std::size_t>(count));
-  if (count == 0) return stats;
   // Positions (three doubles per particle) make the larger of the two buffers.
   const Eigen::Index capacity =
-      std::min(count, items_per_chunk(context.max_chunk_bytes, 3 * sizeof(double)));
+      std::min(count, items_per_chunk(chunk_limits(context.max_chunk_bytes), 3 * sizeof(double)));
   double* const position_buffer =
       context.scratch_buffer(Scratch::positions, 3 * sizeof(double) * capacity).as<double>();
   int* const statistics_buffer =

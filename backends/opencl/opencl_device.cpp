@@ -12,8 +12,6 @@
 #include <posekit/error.hpp>
 
 #include <algorithm>
-#include <atomic>
-#include <mutex>
 #include <string>
 
 namespace posekit::opencl {
@@ -22,11 +20,6 @@ namespace {
 // An assembly tile is scratch memory beside the caller's block; 256 MiB tiles keep that overhead
 // bounded while each launch still runs long enough (tens of milliseconds) to hide its cost.
 constexpr std::uint64_t kMaxTileBytes = std::uint64_t{256} << 20;
-
-std::uint64_t next_device_id() {
-  static std::atomic<std::uint64_t> counter{0};
-  return ++counter;
-}
 
 int choose_vector_width(const cl::Device& device, int requested) {
   if (requested != 0) return requested;
@@ -50,9 +43,9 @@ std::size_t group_size(const cl::Kernel& kernel, const cl::Device& device, std::
 class OpenClDevice final : public Device {
  public:
   OpenClDevice(const DiscoveredDevice& found, const OpenClDeviceOptions& options)
-      : info_(describe_device(found)) {
+      : Device(Calls::serialized), info_(describe_device(found)) {
     runtime_.device = found.device;
-    runtime_.id = next_device_id();
+    runtime_.id = id();
     cl_int status = CL_SUCCESS;
     runtime_.context = cl::Context(found.device, nullptr, nullptr, nullptr, &status);
     POSEKIT_CL_CHECK(status, "clCreateContext");
@@ -87,49 +80,32 @@ class OpenClDevice final : public Device {
 
   DeviceInfo info() const override { return info_; }
 
-  bool supports(DeviceOperation /*operation*/) const override { return true; }
-
-  void assemble_rbf_block(const Eigen::Ref<const Points4>& points,
-                          const Eigen::Ref<const Points4>& centers, bool with_polynomial,
-                          Eigen::Ref<Eigen::MatrixXd> block) override {
-    const std::lock_guard<std::mutex> lock(mutex_);
+  // Serialized: the operations share one in-order queue and scratch buffers.
+ protected:
+  void do_assemble_rbf_block(const Eigen::Ref<const Points4>& points,
+                             const Eigen::Ref<const Points4>& centers, bool with_polynomial,
+                             Eigen::Ref<Eigen::MatrixXd> block) override {
     opencl::assemble_rbf_block(runtime_, points, centers, with_polynomial, block);
   }
 
-  std::unique_ptr<DeviceField> upload_field(const RbfField& field) override {
-    const std::lock_guard<std::mutex> lock(mutex_);
+  std::unique_ptr<DeviceField> do_upload_field(const RbfField& field) override {
     return std::make_unique<OpenClField>(runtime_, field);
   }
 
-  void evaluate_rbf(const DeviceField& field, const Eigen::Ref<const Points4>& points,
-                    Eigen::Ref<Eigen::MatrixX3d> values) override {
-    const OpenClField& own = own_field(field, "evaluate_rbf");
-    const std::lock_guard<std::mutex> lock(mutex_);
-    opencl::evaluate_rbf(runtime_, own, points, values);
+  void do_evaluate_rbf(const DeviceField& field, const Eigen::Ref<const Points4>& points,
+                       Eigen::Ref<Eigen::MatrixX3d> values) override {
+    opencl::evaluate_rbf(runtime_, uploaded<OpenClField>(field), points, values);
   }
 
-  std::vector<Rk45ParticleStats> integrate_rk45(const DeviceField& field,
-                                                Eigen::Ref<Eigen::MatrixX3d> positions,
-                                                const Rk45Options& options) override {
-    validate_rk45_options(options);
-    const OpenClField& own = own_field(field, "integrate_rk45");
-    const std::lock_guard<std::mutex> lock(mutex_);
-    return opencl::integrate_rk45(runtime_, own, positions, options);
+  std::vector<Rk45ParticleStats> do_integrate_rk45(const DeviceField& field,
+                                                   Eigen::Ref<Eigen::MatrixX3d> positions,
+                                                   const Rk45Options& options) override {
+    return opencl::integrate_rk45(runtime_, uploaded<OpenClField>(field), positions, options);
   }
 
  private:
-  const OpenClField& own_field(const DeviceField& field, const char* operation) const {
-    const auto* opencl_field = dynamic_cast<const OpenClField*>(&field);
-    if (opencl_field == nullptr || opencl_field->device_id() != runtime_.id) {
-      throw ArgumentError(std::string(operation) +
-                          ": field was uploaded to another device (upload it to this one)");
-    }
-    return *opencl_field;
-  }
-
   DeviceInfo info_;
   OpenClRuntime runtime_;
-  std::mutex mutex_;
 };
 
 }  // namespace

@@ -11,20 +11,10 @@
 namespace posekit::opencl {
 
 OpenClField::OpenClField(const OpenClRuntime& runtime, const RbfField& field)
-    : device_id_(runtime.id) {
+    : DeviceField(runtime.id, static_cast<int>(field.centers.rows())) {
   const Eigen::Index count = field.centers.rows();
-  if (field.weights.rows() != count) {
-    throw ArgumentError("upload_field: field.weights has " + std::to_string(field.weights.rows()) +
-                        " rows but field.centers has " + std::to_string(count) +
-                        " (one weight row per center)");
-  }
-  if (count > std::numeric_limits<int>::max()) {
-    throw ArgumentError("upload_field: field.centers has " + std::to_string(count) +
-                        " rows, more than an OpenCL kernel can index");
-  }
-  center_count_ = static_cast<int>(count);
   const Eigen::Index width = runtime.vector_width;
-  const Eigen::Index per_part = items_per_buffer(runtime.max_buffer_bytes, 7 * sizeof(double), width);
+  const Eigen::Index per_part = items_per_chunk(chunk_limits(runtime.max_buffer_bytes), 7 * sizeof(double), width);
   Eigen::Index first = 0;
   do {
     const Eigen::Index part_count = std::min(per_part, count - first);

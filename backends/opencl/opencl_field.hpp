@@ -21,12 +21,10 @@ class OpenClField final : public DeviceField {
     int stride = 0;
   };
 
-  /// Uploads `field`. Throws ArgumentError when the weights do not have one row per center and
-  /// DeviceError when the device refuses a buffer.
+  /// Uploads `field` (checked by Device::upload_field). Throws DeviceError when the device
+  /// refuses a buffer.
   OpenClField(const OpenClRuntime& runtime, const RbfField& field);
 
-  int center_count() const override { return center_count_; }
-  std::uint64_t device_id() const { return device_id_; }
   /// At least one part; a field of no centers has one empty part.
   const std::vector<Part>& parts() const { return parts_; }
   /// 45 doubles: the 15 by 3 polynomial, column-major.
@@ -35,8 +33,6 @@ class OpenClField final : public DeviceField {
  private:
   std::vector<Part> parts_;
   cl::Buffer polynomial_;
-  int center_count_ = 0;
-  std::uint64_t device_id_ = 0;
 };
 
 }  // namespace posekit::opencl

@@ -18,14 +18,9 @@ void assemble_rbf_block(OpenClRuntime& runtime, const Eigen::Ref<const Points4>&
                         Eigen::Ref<Eigen::MatrixXd> block) {
   const Eigen::Index rows = points.rows();
   const Eigen::Index center_count = centers.rows();
-  const Eigen::Index columns = validate_rbf_block_shape(rows, center_count, with_polynomial, block);
-  if (rows == 0 || columns == 0) return;
-  if (center_count > std::numeric_limits<int>::max() - kRbfPolynomialTerms) {
-    throw ArgumentError("assemble_rbf_block: centers has " + std::to_string(center_count) +
-                        " rows, more than an OpenCL kernel can index");
-  }
+  const Eigen::Index columns = center_count + (with_polynomial ? kRbfPolynomialTerms : 0);
   const Eigen::Index width = runtime.vector_width;
-  const TileShape tile = assembly_tiles(rows, columns, runtime.max_tile_bytes, width);
+  const TileShape tile = assembly_tiles(chunk_limits(runtime.max_tile_bytes), rows, columns, width);
   const cl::Buffer point_buffer =
       scratch_buffer(runtime, Scratch::points, 4 * sizeof(double) * tile.rows);
   const cl::Buffer center_buffer =

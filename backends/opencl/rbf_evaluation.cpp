@@ -13,12 +13,10 @@ namespace posekit::opencl {
 
 void evaluate_rbf(OpenClRuntime& runtime, const OpenClField& field,
                   const Eigen::Ref<const Points4>& points, Eigen::Ref<Eigen::MatrixX3d> values) {
-  validate_rbf_values_shape(points.rows(), values);
   const Eigen::Index count = points.rows();
-  if (count == 0) return;
   // The points' four columns are the larger of the two buffers.
   const Eigen::Index capacity =
-      std::min(count, items_per_buffer(runtime.max_buffer_bytes, 4 * sizeof(double), 1));
+      std::min(count, items_per_chunk(chunk_limits(runtime.max_buffer_bytes), 4 * sizeof(double)));
   const cl::Buffer point_buffer =
       scratch_buffer(runtime, Scratch::points, 4 * sizeof(double) * capacity);
   const cl::Buffer value_buffer =

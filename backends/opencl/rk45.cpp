@@ -5,7 +5,7 @@
 #include "kernel_launch.hpp"
 #include "opencl_operations.hpp"
 
-#include <posekit/kernel_math.h>
+#include "common/kernel_math.h"
 #include <posekit/error.hpp>
 
 #include <algorithm>
@@ -32,11 +32,10 @@ std::vector<Rk45ParticleStats> integrate_rk45(OpenClRuntime& runtime, const Open
   }
   const Eigen::Index count = positions.rows();
   std::vector<Rk45ParticleStats> stats(static_cast<std::size_t>(count));
-  if (count == 0) return stats;
   const OpenClField::Part& part = field.parts().front();
   // Positions (three doubles per particle) make the larger of the two buffers.
   const Eigen::Index capacity =
-      std::min(count, items_per_buffer(runtime.max_buffer_bytes, 3 * sizeof(double), 1));
+      std::min(count, items_per_chunk(chunk_limits(runtime.max_buffer_bytes), 3 * sizeof(double)));
   const cl::Buffer position_buffer =
       scratch_buffer(runtime, Scratch::positions, 3 * sizeof(double) * capacity);
   const cl::Buffer stats_buffer =

@@ -3,7 +3,7 @@
 //
 // Doubles are printed with 17 significant digits, which round-trips every double exactly; the
 // conversion in the shader compiler is checked bit for bit by tests/unit/vulkan.
-#include <posekit/kernel_math.h>
+#include "common/kernel_math.h"
 
 #include <cstdio>
 #include <string>
@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   std::fprintf(out,
-               "// Generated at build time from core/include/posekit/kernel_math.h by "
+               "// Generated at build time from backends/common/kernel_math.h by "
                "glsl_constants_generator.cpp; do not edit.\n");
 #define POSEKIT_PRINT_DOUBLE(name) \
   std::fprintf(out, "const double %s = %s;\n", #name, glsl_double((double)(name)).c_str());

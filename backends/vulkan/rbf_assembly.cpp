@@ -33,13 +33,12 @@ Eigen::Index round_up_to_quad(Eigen::Index rows) { return (rows + kQuad - 1) / k
 
 }  // namespace
 
-void VulkanDevice::assemble_rbf_block(const Eigen::Ref<const Points4>& points,
-                                      const Eigen::Ref<const Points4>& centers,
-                                      bool with_polynomial, Eigen::Ref<Eigen::MatrixXd> block) {
+void VulkanDevice::do_assemble_rbf_block(const Eigen::Ref<const Points4>& points,
+                                         const Eigen::Ref<const Points4>& centers,
+                                         bool with_polynomial, Eigen::Ref<Eigen::MatrixXd> block) {
   const Eigen::Index rows = points.rows();
   const Eigen::Index center_count = centers.rows();
-  const Eigen::Index columns = validate_rbf_block_shape(rows, center_count, with_polynomial, block);
-  if (rows == 0 || columns == 0) return;
+  const Eigen::Index columns = center_count + (with_polynomial ? kRbfPolynomialTerms : 0);
 
   run("assemble_rbf_block", [&] {
     // Whole quads of rows; the constructor guarantees room for at least one.

@@ -12,14 +12,13 @@
 
 namespace posekit::vulkan {
 
-void VulkanDevice::evaluate_rbf(const DeviceField& field, const Eigen::Ref<const Points4>& points,
-                                Eigen::Ref<Eigen::MatrixX3d> values) {
-  validate_rbf_values_shape(points.rows(), values);
-  const VulkanField& uploaded = own_field(field, "evaluate_rbf");
+void VulkanDevice::do_evaluate_rbf(const DeviceField& field,
+                                   const Eigen::Ref<const Points4>& points,
+                                   Eigen::Ref<Eigen::MatrixX3d> values) {
+  const VulkanField& vulkan_field = uploaded<VulkanField>(field);
   const Eigen::Index count = points.rows();
-  if (count == 0) return;
   run("evaluate_rbf", [&] {
-    const auto centers = static_cast<std::uint64_t>(uploaded.center_count());
+    const auto centers = static_cast<std::uint64_t>(vulkan_field.center_count());
     const std::uint64_t centers_per_dispatch = centers_per_evaluation(loop_iterations_);
     Buffer& diagnostics = evaluation_diagnostics_.at_least(sizeof(std::uint32_t));
     const Eigen::Index batch = batch_size(4 * sizeof(double));
@@ -37,7 +36,7 @@ void VulkanDevice::evaluate_rbf(const DeviceField& field, const Eigen::Ref<const
       evaluate_->write(0, kInputBinding, {{input.handle(), 0, input_bytes}});
       evaluate_->write(0, kOutputBinding, {{output.handle(), 0, output_bytes}});
       evaluate_->write(0, kDiagnosticsBinding, {{diagnostics.handle(), 0, sizeof(std::uint32_t)}});
-      uploaded.bind_to(*evaluate_, 0);
+      vulkan_field.bind_to(*evaluate_, 0);
 
       CommandSlot& slot = *slots_[0];
       const VkCommandBuffer commands = slot.begin();

@@ -8,7 +8,7 @@
 #include "shader_interface.hpp"
 #include "vulkan_device.hpp"
 
-#include <posekit/kernel_math.h>
+#include "common/kernel_math.h"
 #include <posekit/error.hpp>
 
 #include <string>
@@ -39,15 +39,12 @@ Rk45State initial_state(const Rk45Options& options, double x, double y, double z
 
 }  // namespace
 
-std::vector<Rk45ParticleStats> VulkanDevice::integrate_rk45(const DeviceField& field,
-                                                            Eigen::Ref<Eigen::MatrixX3d> positions,
-                                                            const Rk45Options& options) {
-  validate_rk45_options(options);
-  const VulkanField& uploaded = own_field(field, "integrate_rk45");
+std::vector<Rk45ParticleStats> VulkanDevice::do_integrate_rk45(
+    const DeviceField& field, Eigen::Ref<Eigen::MatrixX3d> positions, const Rk45Options& options) {
+  const VulkanField& vulkan_field = uploaded<VulkanField>(field);
   const Eigen::Index count = positions.rows();
   std::vector<Rk45ParticleStats> stats(static_cast<std::size_t>(count));
-  if (count == 0) return stats;
-  const auto centers = static_cast<std::uint64_t>(uploaded.center_count());
+  const auto centers = static_cast<std::uint64_t>(vulkan_field.center_count());
   const std::uint64_t steps_per_round = rk45_steps_per_round(
       centers, loop_iterations_, static_cast<std::uint64_t>(options.max_steps));
   if (steps_per_round == 0) {
@@ -77,7 +74,7 @@ std::vector<Rk45ParticleStats> VulkanDevice::integrate_rk45(const DeviceField& f
         running |= states[i].counters[3] == PK_RK45_RUNNING;
       }
       rk45_->write(0, kInputBinding, {{buffer.handle(), 0, state_bytes}});
-      uploaded.bind_to(*rk45_, 0);
+      vulkan_field.bind_to(*rk45_, 0);
       Rk45Push push{};
       push.t_end = options.t_end;
       push.direction = options.t_end >= options.t_begin ? 1.0 : -1.0;

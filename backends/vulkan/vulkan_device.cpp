@@ -8,17 +8,10 @@
 #include <posekit/error.hpp>
 
 #include <algorithm>
-#include <atomic>
 #include <string>
 
 namespace posekit::vulkan {
 namespace {
-
-// Fields remember the device they were uploaded to by this number; an address could be reused.
-std::uint64_t next_device_id() {
-  static std::atomic<std::uint64_t> counter{0};
-  return ++counter;
-}
 
 constexpr std::uint64_t kDefaultChunkCap = std::uint64_t{64} << 20;
 
@@ -51,8 +44,8 @@ DeviceInfo describe(const DiscoveredDevice& device) {
 }
 
 VulkanDevice::VulkanDevice(bool validation, DeviceTuning tuning)
-    : context_(make_context(validation)),
-      id_(next_device_id()),
+    : Device(Calls::serialized),
+      context_(make_context(validation)),
       chunk_bytes_(std::min<std::uint64_t>(
           context_->limits().maxStorageBufferRange,
           tuning.max_chunk_bytes > 0 ? tuning.max_chunk_bytes : kDefaultChunkCap)),
@@ -108,14 +101,11 @@ VulkanDevice::~VulkanDevice() {
 
 DeviceInfo VulkanDevice::info() const { return describe(context_->description()); }
 
-bool VulkanDevice::supports(DeviceOperation /*operation*/) const { return true; }
-
-std::unique_ptr<DeviceField> VulkanDevice::upload_field(const RbfField& field) {
-  return std::make_unique<VulkanField>(context_, field, id_);
+std::unique_ptr<DeviceField> VulkanDevice::do_upload_field(const RbfField& field) {
+  return std::make_unique<VulkanField>(context_, field, id());
 }
 
 void VulkanDevice::run(const char* operation, const std::function<void()>& body) {
-  const std::lock_guard<std::mutex> lock(mutex_);
   const std::size_t first_message = validation_message_count();
   try {
     body();
@@ -125,15 +115,6 @@ void VulkanDevice::run(const char* operation, const std::function<void()>& body)
     throw;
   }
   if (context_->validation()) throw_if_validation_messages(first_message, operation);
-}
-
-const VulkanField& VulkanDevice::own_field(const DeviceField& field, const char* operation) const {
-  const auto* vulkan_field = dynamic_cast<const VulkanField*>(&field);
-  if (vulkan_field == nullptr || vulkan_field->device_id() != id_) {
-    throw ArgumentError(std::string(operation) +
-                        ": field was uploaded to another device (upload it to this one)");
-  }
-  return *vulkan_field;
 }
 
 Eigen::Index VulkanDevice::batch_size(std::uint64_t bytes_per_point) const {

@@ -1,7 +1,7 @@
 // The Vulkan device: a Context, the three compute pipelines built once at creation, two command
 // slots (so that assembly can compute one rectangle while the host copies out the previous one)
-// and scratch buffers reused from call to call. Operations are serialized by a lock: a Vulkan
-// queue and command pool take one thread at a time. One file per operation: rbf_assembly.cpp,
+// and scratch buffers reused from call to call. Operations are serialized (Device's front holds
+// the lock): a Vulkan queue and command pool take one thread at a time. One file per operation: rbf_assembly.cpp,
 // rbf_evaluation.cpp, rk45.cpp.
 #pragma once
 
@@ -16,7 +16,6 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
-#include <mutex>
 
 namespace posekit::vulkan {
 
@@ -42,17 +41,6 @@ class VulkanDevice final : public Device {
   ~VulkanDevice() override;
 
   DeviceInfo info() const override;
-  bool supports(DeviceOperation operation) const override;
-
-  void assemble_rbf_block(const Eigen::Ref<const Points4>& points,
-                          const Eigen::Ref<const Points4>& centers, bool with_polynomial,
-                          Eigen::Ref<Eigen::MatrixXd> block) override;
-  std::unique_ptr<DeviceField> upload_field(const RbfField& field) override;
-  void evaluate_rbf(const DeviceField& field, const Eigen::Ref<const Points4>& points,
-                    Eigen::Ref<Eigen::MatrixX3d> values) override;
-  std::vector<Rk45ParticleStats> integrate_rk45(const DeviceField& field,
-                                                Eigen::Ref<Eigen::MatrixX3d> positions,
-                                                const Rk45Options& options) override;
 
   /// The Vulkan objects underneath (for tests that run their own shaders).
   const std::shared_ptr<const Context>& context() const { return context_; }
@@ -61,20 +49,28 @@ class VulkanDevice final : public Device {
   /// Loop iterations one shader invocation may take (kUnlimitedLoopIterations: no limit).
   std::uint64_t loop_iterations() const { return loop_iterations_; }
 
+ protected:
+  void do_assemble_rbf_block(const Eigen::Ref<const Points4>& points,
+                             const Eigen::Ref<const Points4>& centers, bool with_polynomial,
+                             Eigen::Ref<Eigen::MatrixXd> block) override;
+  std::unique_ptr<DeviceField> do_upload_field(const RbfField& field) override;
+  void do_evaluate_rbf(const DeviceField& field, const Eigen::Ref<const Points4>& points,
+                       Eigen::Ref<Eigen::MatrixX3d> values) override;
+  std::vector<Rk45ParticleStats> do_integrate_rk45(const DeviceField& field,
+                                                   Eigen::Ref<Eigen::MatrixX3d> positions,
+                                                   const Rk45Options& options) override;
+
  private:
-  // Runs `body` under the lock; afterwards (also when it throws) no submission is pending, and
+  // Runs `body`; afterwards (also when it throws) no submission is pending, and
   // with validation on, any message of the layer meanwhile becomes a DeviceError naming
   // `operation`.
   void run(const char* operation, const std::function<void()>& body);
-  const VulkanField& own_field(const DeviceField& field, const char* operation) const;
   // Points per dispatch when each takes `bytes_per_point` of one storage buffer.
   Eigen::Index batch_size(std::uint64_t bytes_per_point) const;
 
   std::shared_ptr<const Context> context_;
-  std::uint64_t id_;
   std::uint64_t chunk_bytes_;
   std::uint64_t loop_iterations_;
-  std::mutex mutex_;
   std::unique_ptr<ComputePipeline> assemble_;
   std::unique_ptr<ComputePipeline> evaluate_;
   std::unique_ptr<ComputePipeline> rk45_;

@@ -13,14 +13,7 @@ namespace posekit::vulkan {
 
 VulkanField::VulkanField(std::shared_ptr<const Context> context, const RbfField& field,
                          std::uint64_t device_id)
-    : context_(std::move(context)),
-      center_count_(static_cast<int>(field.centers.rows())),
-      device_id_(device_id) {
-  if (field.weights.rows() != field.centers.rows()) {
-    throw ArgumentError("upload_field: field.weights has " + std::to_string(field.weights.rows()) +
-                        " rows but field.centers has " + std::to_string(field.centers.rows()) +
-                        " (one weight row per center)");
-  }
+    : DeviceField(device_id, static_cast<int>(field.centers.rows())), context_(std::move(context)) {
   const auto centers = static_cast<std::uint64_t>(field.centers.rows());
   const std::uint64_t chunks =
       std::max<std::uint64_t>(1, (centers + kCentersPerChunk - 1) / kCentersPerChunk);

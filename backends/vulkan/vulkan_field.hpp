@@ -14,14 +14,10 @@ namespace posekit::vulkan {
 
 class VulkanField final : public DeviceField {
  public:
-  /// Copies `field` into device buffers; device_id names the device that owns it. Throws
-  /// ArgumentError when the weights do not have one row per center or the centers do not fit one
-  /// storage buffer of the device.
+  /// Copies `field` (checked by Device::upload_field) into device buffers for the device
+  /// numbered device_id. Throws ArgumentError when the centers do not fit one storage buffer.
   VulkanField(std::shared_ptr<const Context> context, const RbfField& field,
               std::uint64_t device_id);
-
-  int center_count() const override { return center_count_; }
-  std::uint64_t device_id() const { return device_id_; }
 
   /// Points the field's bindings (FieldCenters, FieldPolynomial, FieldChunk[]) of descriptor set
   /// `set` of `pipeline` at this field's buffers.
@@ -29,8 +25,6 @@ class VulkanField final : public DeviceField {
 
  private:
   std::shared_ptr<const Context> context_;
-  int center_count_;
-  std::uint64_t device_id_;
   Buffer centers_;     // whole chunks of kChunkBytes, at least one
   Buffer polynomial_;  // 15 dvec4: the coefficients of one term per row
 };

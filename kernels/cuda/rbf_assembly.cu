@@ -7,7 +7,7 @@
 // one column, so each of its stores writes 256 contiguous bytes of the column-major tile.
 #include "cuda/cuda_kernels.hpp"
 
-#include <posekit/kernel_math.h>
+#include "common/kernel_math.h"
 
 #include <cstddef>
 

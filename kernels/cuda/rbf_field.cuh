@@ -8,7 +8,7 @@
 
 #include "cuda/cuda_kernels.hpp"
 
-#include <posekit/kernel_math.h>
+#include "common/kernel_math.h"
 
 namespace posekit::cuda {
 

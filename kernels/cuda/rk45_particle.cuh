@@ -11,7 +11,7 @@
 // stages is unrolled, every index into k is a constant.
 #pragma once
 
-#include <posekit/kernel_math.h>
+#include "common/kernel_math.h"
 
 #if defined(__CUDACC__)
 #define PK_CUDA_FUNCTION __host__ __device__ inline

@@ -67,15 +67,6 @@ Device* acquire_device(const std::string& backend, std::string& reason) {
   return nullptr;
 }
 
-const char* operation_name(DeviceOperation operation) {
-  switch (operation) {
-    case DeviceOperation::rbf_assembly: return "rbf_assembly";
-    case DeviceOperation::rbf_evaluation: return "rbf_evaluation";
-    case DeviceOperation::rk45_integration: return "rk45_integration";
-  }
-  return "unknown";
-}
-
 // Conformance cases started and cases that got to run on a device, in this process.
 struct RunCounters {
   int attempted = 0;
@@ -119,9 +110,6 @@ TEST_P(BackendConformance, MatchesReference) {
   const ConformanceCase& test_case = *std::get<1>(GetParam());
   ++counters().attempted;
   POSEKIT_DEVICE_OR_SKIP(device, backend);
-  if (!device.supports(test_case.operation())) {
-    GTEST_SKIP() << backend << " does not support " << operation_name(test_case.operation());
-  }
   ++counters().tested;
   SCOPED_TRACE(backend + ": " + test_case.name());
   test_case.run(device);
@@ -158,23 +146,19 @@ TEST_P(BackendArguments, RejectInconsistentSizes) {
   Random random(21);
   const Points4 points = random.points(5);
   const RbfField field = random.field(random.points(7), 1.0, 1.0);
-  if (device.supports(DeviceOperation::rbf_assembly)) {
-    Eigen::MatrixXd without_polynomial_columns(5, 7);
-    expect_argument_error(
-        [&] { device.assemble_rbf_block(points, field.centers, true, without_polynomial_columns); },
-        "block");
-    Eigen::MatrixXd too_few_rows(4, 7);
-    expect_argument_error(
-        [&] { device.assemble_rbf_block(points, field.centers, false, too_few_rows); }, "block");
-  }
+  Eigen::MatrixXd without_polynomial_columns(5, 7);
+  expect_argument_error(
+      [&] { device.assemble_rbf_block(points, field.centers, true, without_polynomial_columns); },
+      "block");
+  Eigen::MatrixXd too_few_rows(4, 7);
+  expect_argument_error(
+      [&] { device.assemble_rbf_block(points, field.centers, false, too_few_rows); }, "block");
   RbfField mismatched = field;
   mismatched.weights.conservativeResize(6, 3);
   expect_argument_error([&] { device.upload_field(mismatched); }, "weights");
-  if (device.supports(DeviceOperation::rbf_evaluation)) {
-    const std::unique_ptr<DeviceField> uploaded = device.upload_field(field);
-    Eigen::MatrixX3d too_many_rows(6, 3);
-    expect_argument_error([&] { device.evaluate_rbf(*uploaded, points, too_many_rows); }, "values");
-  }
+  const std::unique_ptr<DeviceField> uploaded = device.upload_field(field);
+  Eigen::MatrixX3d too_many_rows(6, 3);
+  expect_argument_error([&] { device.evaluate_rbf(*uploaded, points, too_many_rows); }, "values");
 }
 
 TEST_P(BackendArguments, RejectFieldsOfOtherDevices) {
@@ -185,29 +169,25 @@ TEST_P(BackendArguments, RejectFieldsOfOtherDevices) {
   const std::unique_ptr<Device> other_device = create_device(GetParam());
   const std::unique_ptr<DeviceField> foreign = other_device->upload_field(field);
 
+  // A field of no device: number 0 is never a device's.
   class UnknownField : public DeviceField {
    public:
-    int center_count() const override { return 0; }
+    UnknownField() : DeviceField(0, 0) {}
   } unknown;
 
   Eigen::MatrixX3d values(5, 3);
   Eigen::MatrixX3d positions = points.leftCols<3>();
   for (const DeviceField* wrong : {static_cast<const DeviceField*>(foreign.get()),
                                    static_cast<const DeviceField*>(&unknown)}) {
-    if (device.supports(DeviceOperation::rbf_evaluation)) {
-      expect_argument_error([&] { device.evaluate_rbf(*wrong, points, values); }, "field");
-    }
-    if (device.supports(DeviceOperation::rk45_integration)) {
-      expect_argument_error([&] { device.integrate_rk45(*wrong, positions, Rk45Options()); },
-                            "field");
-    }
+    expect_argument_error([&] { device.evaluate_rbf(*wrong, points, values); }, "field");
+    expect_argument_error([&] { device.integrate_rk45(*wrong, positions, Rk45Options()); },
+                          "field");
   }
   EXPECT_EQ(positions, points.leftCols<3>()) << "a rejected call must not move particles";
 }
 
 TEST_P(BackendArguments, RejectInvalidRk45Options) {
   POSEKIT_DEVICE_OR_SKIP(device, GetParam());
-  if (!device.supports(DeviceOperation::rk45_integration)) GTEST_SKIP() << "no rk45_integration";
   Random random(23);
   const RbfField field = random.field(random.points(7), 0.01, 0.01);
   const std::unique_ptr<DeviceField> uploaded = device.upload_field(field);
@@ -248,14 +228,10 @@ TEST(ConformanceCoverage, AtLeastOneBackendIsTested) {
   for (const std::string& backend : registered_backends()) {
     std::string reason;
     Device* device = acquire_device(backend, reason);
-    const bool runs_something =
-        device != nullptr && (device->supports(DeviceOperation::rbf_assembly) ||
-                              device->supports(DeviceOperation::rbf_evaluation) ||
-                              device->supports(DeviceOperation::rk45_integration));
-    if (runs_something) {
+    if (device != nullptr) {
       ++usable;
     } else {
-      reasons += (device == nullptr ? reason : backend + " supports no operation") + "; ";
+      reasons += reason + "; ";
     }
   }
   EXPECT_GT(usable, 0) << "no backend can run the conformance cases: " << reasons;

@@ -53,8 +53,6 @@ namespace posekit::conformance {
 class ConformanceCase {
  public:
   virtual ~ConformanceCase() = default;
-  /// The operation it exercises; backends that do not support it skip the case.
-  virtual DeviceOperation operation() const = 0;
   /// Letters, digits and '_' only; spells every parameter.
   virtual std::string name() const = 0;
   /// Runs the case on `device`, reporting mismatches through EXPECT_* / ADD_FAILURE.

@@ -22,7 +22,6 @@ struct RbfAssemblyCase final : ConformanceCase {
   double time_scale = 1.0;
   Tolerance tolerance = kEntryTolerance;
 
-  DeviceOperation operation() const override { return DeviceOperation::rbf_assembly; }
 
   std::string name() const override {
     std::ostringstream name;

@@ -28,7 +28,6 @@ struct RbfEvaluateCase final : ConformanceCase {
   double time_scale = 1.0;
   Tolerance tolerance = kSumTolerance;
 
-  DeviceOperation operation() const override { return DeviceOperation::rbf_evaluation; }
 
   std::string name() const override {
     std::ostringstream name;

@@ -111,7 +111,6 @@ struct AffineFlowCase final : ConformanceCase {
   Rk45Options options;
   std::string label;
 
-  DeviceOperation operation() const override { return DeviceOperation::rk45_integration; }
 
   std::string name() const override {
     return sanitize_name("rk45_" + label + "_particles" + std::to_string(particles) + "_seed" +
@@ -165,7 +164,6 @@ struct RotationCase final : ConformanceCase {
   std::uint64_t seed = 1;
   Rk45Options options;
 
-  DeviceOperation operation() const override { return DeviceOperation::rk45_integration; }
 
   std::string name() const override {
     return sanitize_name("rk45_rotation_omega" + format_number(omega) + "_particles" +
@@ -201,7 +199,6 @@ struct RandomFieldCase final : ConformanceCase {
   Eigen::Index on_center = 0;
   Rk45Options options;
 
-  DeviceOperation operation() const override { return DeviceOperation::rk45_integration; }
 
   std::string name() const override {
     std::string name = "rk45_random_field_particles" + std::to_string(particles) + "_centers" +
@@ -237,7 +234,6 @@ enum class Outcome { max_steps, step_underflow, non_finite, zero_interval, empty
 struct OutcomeCase final : ConformanceCase {
   Outcome outcome = Outcome::max_steps;
 
-  DeviceOperation operation() const override { return DeviceOperation::rk45_integration; }
 
   std::string name() const override {
     switch (outcome) {

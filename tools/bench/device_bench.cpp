@@ -237,8 +237,8 @@ std::string backend_label(const Device& device) {
 
 void BM_BackendRbfEvaluation(benchmark::State& state, const std::string& backend) {
   Device* device = backend_device(backend);
-  if (device == nullptr || !device->supports(DeviceOperation::rbf_evaluation)) {
-    state.SkipWithError("backend cannot evaluate here");
+  if (device == nullptr) {
+    state.SkipWithError("backend unavailable here");
     return;
   }
   const Eigen::Index points = state.range(0);
@@ -264,8 +264,8 @@ void BM_BackendRbfEvaluation(benchmark::State& state, const std::string& backend
 
 void BM_BackendRbfAssembly(benchmark::State& state, const std::string& backend) {
   Device* device = backend_device(backend);
-  if (device == nullptr || !device->supports(DeviceOperation::rbf_assembly)) {
-    state.SkipWithError("backend cannot assemble here");
+  if (device == nullptr) {
+    state.SkipWithError("backend unavailable here");
     return;
   }
   const Eigen::Index points = state.range(0);
@@ -287,8 +287,8 @@ void BM_BackendRbfAssembly(benchmark::State& state, const std::string& backend) 
 
 void BM_BackendRk45Batch(benchmark::State& state, const std::string& backend) {
   Device* device = backend_device(backend);
-  if (device == nullptr || !device->supports(DeviceOperation::rk45_integration)) {
-    state.SkipWithError("backend cannot integrate here");
+  if (device == nullptr) {
+    state.SkipWithError("backend unavailable here");
     return;
   }
   run_rk45_batch(state, *device, state.range(0), state.range(1));

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -29,14 +30,25 @@ struct RbfField {
 };
 
 /// A field stored on a device by Device::upload_field; evaluate or integrate against it many times.
+/// It carries the number of the device that holds it, so that a device refuses another's field.
 class DeviceField {
  public:
   virtual ~DeviceField() = default;
-  virtual int center_count() const = 0;
-};
+  DeviceField(const DeviceField&) = delete;
+  DeviceField& operator=(const DeviceField&) = delete;
 
-/// The operations a backend may provide; ask Device::supports before relying on one.
-enum class DeviceOperation { rbf_assembly, rbf_evaluation, rk45_integration };
+  int center_count() const { return center_count_; }
+  /// Device::id of the device that holds it.
+  std::uint64_t device_id() const { return device_id_; }
+
+ protected:
+  DeviceField(std::uint64_t device_id, int center_count)
+      : device_id_(device_id), center_count_(center_count) {}
+
+ private:
+  std::uint64_t device_id_;
+  int center_count_;
+};
 
 /// Controls of the adaptive Dormand-Prince 5(4) integration. Times and tolerances must be finite,
 /// relative_tolerance >= 0, absolute_tolerance > 0, initial_step > 0, min_step >= 0 and
@@ -71,16 +83,9 @@ struct Rk45Summary {
 };
 
 /// Throws ArgumentError naming the first option out of range (non-finite times or tolerances,
-/// absolute_tolerance <= 0, initial_step <= 0, min_step < 0, max_steps <= 0). Every backend calls it.
+/// absolute_tolerance <= 0, initial_step <= 0, min_step < 0, max_steps <= 0), as
+/// Device::integrate_rk45 does before any work.
 void validate_rk45_options(const Rk45Options& options);
-
-/// Throws ArgumentError unless `block` is #points by (#centers + 15 when with_polynomial), as
-/// Device::assemble_rbf_block needs; returns that column count. Every backend calls it.
-Eigen::Index validate_rbf_block_shape(Eigen::Index point_count, Eigen::Index center_count, bool with_polynomial,
-                                      const Eigen::Ref<Eigen::MatrixXd>& block);
-
-/// Throws ArgumentError unless `values` has one row per point, as Device::evaluate_rbf needs.
-void validate_rbf_values_shape(Eigen::Index point_count, const Eigen::Ref<Eigen::MatrixX3d>& values);
 
 /// Adds up per-particle statistics.
 Rk45Summary summarize(const std::vector<Rk45ParticleStats>& stats);
@@ -97,34 +102,72 @@ struct DeviceInfo {
 };
 
 /// A compute device. Kernels and pipelines are built once, when the device is created.
-/// Methods throw DeviceError on an API failure and ArgumentError on inconsistent sizes.
+/// The public operations check their arguments once, for every backend alike, and throw
+/// ArgumentError on inconsistent sizes or a field of another device; DeviceError on an API failure.
 class Device {
  public:
   virtual ~Device() = default;
+  Device(const Device&) = delete;
+  Device& operator=(const Device&) = delete;
 
   virtual DeviceInfo info() const = 0;
-  virtual bool supports(DeviceOperation operation) const = 0;
 
   /// Writes into `block` (#P by #C, plus 15 columns when with_polynomial) the values
   /// phi(|points_i - centers_j|) followed by the polynomial terms pi_k(points_i).
-  virtual void assemble_rbf_block(const Eigen::Ref<const Points4>& points,
-                                  const Eigen::Ref<const Points4>& centers, bool with_polynomial,
-                                  Eigen::Ref<Eigen::MatrixXd> block) = 0;
+  void assemble_rbf_block(const Eigen::Ref<const Points4>& points,
+                          const Eigen::Ref<const Points4>& centers, bool with_polynomial,
+                          Eigen::Ref<Eigen::MatrixXd> block);
 
-  /// Stores a field on the device for repeated evaluation and integration.
-  virtual std::unique_ptr<DeviceField> upload_field(const RbfField& field) = 0;
+  /// Stores a field on the device for repeated evaluation and integration. Throws ArgumentError
+  /// unless the weights have one row per center.
+  std::unique_ptr<DeviceField> upload_field(const RbfField& field);
 
   /// Writes f(points_i) into row i of `values` (#P by 3).
-  virtual void evaluate_rbf(const DeviceField& field, const Eigen::Ref<const Points4>& points,
-                            Eigen::Ref<Eigen::MatrixX3d> values) = 0;
+  void evaluate_rbf(const DeviceField& field, const Eigen::Ref<const Points4>& points,
+                    Eigen::Ref<Eigen::MatrixX3d> values);
 
   /// Integrates every particle x (row of `positions`, #P by 3, overwritten with the end positions)
   /// through dx/dt = f(x, t) from options.t_begin to options.t_end, each with its own adaptive step.
   /// Returns one statistics record per particle. A particle that fails is not an exception: its
   /// status says why and its row holds the position it had reached.
-  virtual std::vector<Rk45ParticleStats> integrate_rk45(const DeviceField& field,
-                                                        Eigen::Ref<Eigen::MatrixX3d> positions,
-                                                        const Rk45Options& options) = 0;
+  std::vector<Rk45ParticleStats> integrate_rk45(const DeviceField& field,
+                                                Eigen::Ref<Eigen::MatrixX3d> positions,
+                                                const Rk45Options& options);
+
+  /// A number unique to this device in the process; the fields it holds carry it.
+  std::uint64_t id() const { return id_; }
+
+ protected:
+  /// Whether callers' threads may enter the operations together (the CPU's thread arena) or one
+  /// at a time (a GPU API's queue or stream).
+  enum class Calls { concurrent, serialized };
+  explicit Device(Calls calls);
+
+  // The backend's operations. They are called with checked arguments: the shapes agree, the
+  // options are valid, there is work to do, and a field was uploaded to this device, so that its
+  // dynamic type is the backend's own (see uploaded()).
+  virtual void do_assemble_rbf_block(const Eigen::Ref<const Points4>& points,
+                                     const Eigen::Ref<const Points4>& centers,
+                                     bool with_polynomial, Eigen::Ref<Eigen::MatrixXd> block) = 0;
+  virtual std::unique_ptr<DeviceField> do_upload_field(const RbfField& field) = 0;
+  virtual void do_evaluate_rbf(const DeviceField& field, const Eigen::Ref<const Points4>& points,
+                               Eigen::Ref<Eigen::MatrixX3d> values) = 0;
+  virtual std::vector<Rk45ParticleStats> do_integrate_rk45(const DeviceField& field,
+                                                           Eigen::Ref<Eigen::MatrixX3d> positions,
+                                                           const Rk45Options& options) = 0;
+
+  /// The backend's own field type of a field that the front has checked to be this device's.
+  template <typename BackendField>
+  static const BackendField& uploaded(const DeviceField& field) {
+    return static_cast<const BackendField&>(field);
+  }
+
+ private:
+  std::unique_lock<std::mutex> enter();
+
+  std::uint64_t id_;
+  Calls calls_;
+  std::mutex mutex_;
 };
 
 }  // namespace posekit

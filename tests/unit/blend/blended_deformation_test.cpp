@@ -91,7 +91,8 @@ TEST_F(ArmDeformation, EnergyNeverRisesWithinAStage) {
   }
   EXPECT_EQ(result.iterations.back().stage, "minimal");
   EXPECT_EQ(result.energy, result.iterations.back().energy);
-  EXPECT_GE(result.closest_example, 0);
+  // Bent at 112.5 degrees, between the examples at 90 and 135.
+  EXPECT_TRUE(result.closest_example == 2 || result.closest_example == 3) << result.closest_example;
 }
 
 TEST_F(ArmDeformation, ChoosingTheExampleAfterItsSolveAlsoDescends) {

@@ -1,5 +1,6 @@
 // Errors of CUDA calls become DeviceError messages with the call, the error, the file and the line.
 #include "cuda/cuda_check.hpp"
+#include "cuda/cuda_discovery.hpp"
 
 #include <posekit/error.hpp>
 
@@ -28,14 +29,22 @@ TEST(CudaCheck, AnErrorNamesTheCallTheErrorAndThePlace) {
   }
 }
 
-TEST(CudaCheck, ARuntimeCallWithoutADriverFailsCleanly) {
-  // On a machine without a (recent enough) driver every call fails; with one this allocation of
-  // nothing succeeds. Either way the outcome is a value or a DeviceError, never a crash.
+TEST(CudaCheck, ARuntimeCallAgreesWithDiscovery) {
+  // Where discovery found a GPU the runtime counts it; elsewhere (no driver, or no device) the call
+  // either fails with a one-line DeviceError naming itself or counts none, never crashes.
+  const Discovery discovery = discover_device();
   int count = 0;
   try {
     POSEKIT_CUDA_CHECK(cudaGetDeviceCount(&count));
-    EXPECT_GE(count, 0);
+    if (discovery.device) {
+      EXPECT_GT(count, discovery.device->ordinal);
+    } else {
+      EXPECT_EQ(count, 0) << "the runtime counts a device that discovery did not find: "
+                          << discovery.reason;
+    }
   } catch (const DeviceError& error) {
+    EXPECT_FALSE(discovery.device) << "discovery found a GPU but the runtime call failed: "
+                                   << error.what();
     EXPECT_NE(std::string(error.what()).find("cudaGetDeviceCount(&count) failed with cudaError"),
               std::string::npos)
         << error.what();

@@ -180,12 +180,16 @@ TEST(CpuDevice, DescribesItselfWithThreadsAndKernels) {
       << "capped at the hardware threads";
 }
 
-TEST(CpuDevice, SupportsEveryOperation) {
-  const std::unique_ptr<Device> device = make_cpu_device();
-  for (DeviceOperation operation : {DeviceOperation::rbf_assembly, DeviceOperation::rbf_evaluation,
-                                    DeviceOperation::rk45_integration}) {
-    EXPECT_TRUE(device->supports(operation));
-  }
+TEST(CpuDevice, FieldsCarryTheNumberOfTheirDevice) {
+  const std::unique_ptr<Device> first = make_cpu_device();
+  const std::unique_ptr<Device> second = make_cpu_device();
+  EXPECT_NE(first->id(), second->id());
+  RbfField field;
+  field.centers = Points4::Zero(3, 4);
+  field.weights = Eigen::MatrixX3d::Zero(3, 3);
+  const std::unique_ptr<DeviceField> uploaded = second->upload_field(field);
+  EXPECT_EQ(uploaded->device_id(), second->id());
+  EXPECT_EQ(uploaded->center_count(), 3);
 }
 
 TEST(CpuDevice, RejectsANegativeThreadCount) {

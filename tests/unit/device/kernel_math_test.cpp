@@ -1,6 +1,6 @@
 // kernel_math.h, the formulas every backend shares: the logarithm's accuracy, phi, the polynomial
 // basis order, the Dormand-Prince tableau and the step-size control.
-#include <posekit/kernel_math.h>
+#include "common/kernel_math.h"
 
 #include <gtest/gtest.h>
 

@@ -10,14 +10,14 @@ namespace posekit::opencl {
 namespace {
 
 TEST(Chunking, ItemsPerBufferRoundDownToTheMultiple) {
-  EXPECT_EQ(items_per_buffer(4096, 56, 8), 72);  // 73 fit, 72 is the last multiple of 8
-  EXPECT_EQ(items_per_buffer(4096, 56, 1), 73);
-  EXPECT_EQ(items_per_buffer(4096, 32, 1), 128);
+  EXPECT_EQ(items_per_chunk(chunk_limits(4096), 56, 8), 72);  // 73 fit, 72 is the last multiple of 8
+  EXPECT_EQ(items_per_chunk(chunk_limits(4096), 56, 1), 73);
+  EXPECT_EQ(items_per_chunk(chunk_limits(4096), 32, 1), 128);
 }
 
 TEST(Chunking, ItemsPerBufferKeepsOneVectorAndStaysIndexable) {
-  EXPECT_EQ(items_per_buffer(100, 56, 8), 8) << "at least one whole vector";
-  EXPECT_EQ(items_per_buffer(std::uint64_t{1} << 62, 8, 8), kMaxChunkItems);
+  EXPECT_EQ(items_per_chunk(chunk_limits(100), 56, 8), 8) << "at least one whole vector";
+  EXPECT_EQ(items_per_chunk(chunk_limits(std::uint64_t{1} << 62), 8, 8), kMaxChunkItems);
 }
 
 TEST(Chunking, RoundUp) {
@@ -33,7 +33,7 @@ TEST(Chunking, AssemblyTilesFitTheLimit) {
     for (const Eigen::Index width : {2, 4, 8}) {
       for (const Eigen::Index points : {1, 7, 1031, 65000, 1000003}) {
         for (const Eigen::Index columns : {1, 16, 272, 2715}) {
-          const TileShape tile = assembly_tiles(points, columns, limit, width);
+          const TileShape tile = assembly_tiles(chunk_limits(limit), points, columns, width);
           SCOPED_TRACE(::testing::Message() << "limit " << limit << " width " << width << " points "
                                             << points << " columns " << columns);
           EXPECT_EQ(tile.rows % width, 0);
@@ -51,14 +51,14 @@ TEST(Chunking, AssemblyTilesFitTheLimit) {
 }
 
 TEST(Chunking, AssemblyTilesCoverASmallBlockAtOnce) {
-  const TileShape tile = assembly_tiles(128, 2715, std::uint64_t{256} << 20, 8);
+  const TileShape tile = assembly_tiles(chunk_limits(std::uint64_t{256} << 20), 128, 2715, 8);
   EXPECT_EQ(tile.rows, 128);
   EXPECT_EQ(tile.columns, 2715);
 }
 
 TEST(Chunking, AssemblyTilesKeepEveryRowOfALargeBlock) {
   // 65,000 x 2,715 doubles (1.4 GB) in 256 MiB tiles: all rows, a sixth of the columns each.
-  const TileShape tile = assembly_tiles(65000, 2715, std::uint64_t{256} << 20, 8);
+  const TileShape tile = assembly_tiles(chunk_limits(std::uint64_t{256} << 20), 65000, 2715, 8);
   EXPECT_EQ(tile.rows, 65000);
   EXPECT_EQ(tile.columns, (std::int64_t{256} << 20) / 8 / 65000);
 }

@@ -46,7 +46,7 @@ TEST(SmallBuffers, AssemblyInTilesMatchesTheReference) {
     const Points4 centers = random.points(257);
     const Eigen::Index columns = centers.rows() + kRbfPolynomialTerms;
     // The test means nothing unless the block is cut both ways.
-    const TileShape tile = assembly_tiles(points.rows(), columns, kTinyBuffer, width);
+    const TileShape tile = assembly_tiles(chunk_limits(kTinyBuffer), points.rows(), columns, width);
     ASSERT_LT(tile.rows, points.rows());
     ASSERT_LT(tile.columns, columns);
     ASSERT_NE(centers.rows() % tile.columns, 0) << "a tile should hold centers and terms";
@@ -68,9 +68,9 @@ TEST(SmallBuffers, EvaluationOfAFieldInPartsMatchesTheReference) {
   Random random(32);
   const RbfField field = random.field(random.points(257), 1.0, 1.0);
   const Points4 points = random.points(1031);
-  ASSERT_LT(items_per_buffer(kTinyBuffer, 7 * sizeof(double), 2), field.centers.rows())
+  ASSERT_LT(items_per_chunk(chunk_limits(kTinyBuffer), 7 * sizeof(double), 2), field.centers.rows())
       << "the field should need several buffers";
-  ASSERT_LT(items_per_buffer(kTinyBuffer, 4 * sizeof(double), 1), points.rows())
+  ASSERT_LT(items_per_chunk(chunk_limits(kTinyBuffer), 4 * sizeof(double), 1), points.rows())
       << "the points should need several chunks";
 
   const std::unique_ptr<DeviceField> uploaded = device->upload_field(field);
@@ -90,7 +90,7 @@ TEST(SmallBuffers, ChunksOfPointsGiveTheSameBitsAsOneLaunch) {
   // 50 centers fit one 4 KiB buffer, so only the points are cut.
   const RbfField field = random.field(random.points(50), 1.0, 1.0);
   const Points4 points = random.points(1031);
-  ASSERT_GE(items_per_buffer(kTinyBuffer, 7 * sizeof(double), 8), field.centers.rows())
+  ASSERT_GE(items_per_chunk(chunk_limits(kTinyBuffer), 7 * sizeof(double), 8), field.centers.rows())
       << "the field should fit one buffer at any vector width";
 
   const std::unique_ptr<Device> whole = make_opencl_device();
@@ -108,7 +108,7 @@ TEST(SmallBuffers, ChunksOfParticlesGiveTheSameBitsAsOneLaunch) {
   Random random(34);
   const RbfField field = random.field(random.ball_points(50), 0.02, 0.02);
   const Eigen::MatrixX3d start = random.ball_points(401).leftCols<3>();
-  ASSERT_LT(items_per_buffer(kTinyBuffer, 3 * sizeof(double), 1), start.rows())
+  ASSERT_LT(items_per_chunk(chunk_limits(kTinyBuffer), 3 * sizeof(double), 1), start.rows())
       << "the particles should need several chunks";
   Rk45Options options;
 

@@ -3,7 +3,7 @@
 // lacks (within 1 ulp of the exact value over 1e-300 ... 1e300), and the step-factor power.
 #include "vulkan_test_support.hpp"
 
-#include <posekit/kernel_math.h>
+#include "common/kernel_math.h"
 
 #include <algorithm>
 #include <cfloat>
