@@ -1,7 +1,7 @@
 #include "correct/reference_zones.hpp"
 
 #include "correct/repair_stage.hpp"
-#include "geometry/vertex_regions.hpp"
+#include <posekit/vertex_regions.hpp>
 
 #include <posekit/rigid_motion.hpp>
 

@@ -1,6 +1,6 @@
 #include "correct/region_sweep.hpp"
 
-#include "geometry/vertex_regions.hpp"
+#include <posekit/vertex_regions.hpp>
 
 #include <algorithm>
 #include <map>

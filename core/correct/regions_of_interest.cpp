@@ -1,6 +1,6 @@
 #include "correct/regions_of_interest.hpp"
 
-#include "geometry/vertex_regions.hpp"
+#include <posekit/vertex_regions.hpp>
 
 #include <algorithm>
 #include <numeric>

@@ -2,7 +2,7 @@
 
 #include "correct/repair_stage.hpp"
 #include "correct/target_reproduction.hpp"
-#include "geometry/vertex_regions.hpp"
+#include <posekit/vertex_regions.hpp>
 
 #include <posekit/as_rigid_as_possible.hpp>
 

@@ -1,7 +1,7 @@
 #include "correct/target_reproduction.hpp"
 
 #include "correct/repair_stage.hpp"
-#include "geometry/vertex_regions.hpp"
+#include <posekit/vertex_regions.hpp>
 
 #include <posekit/error.hpp>
 #include <posekit/self_intersections.hpp>

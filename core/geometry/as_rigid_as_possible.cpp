@@ -1,7 +1,7 @@
 #include <posekit/as_rigid_as_possible.hpp>
 #include <posekit/submesh.hpp>
 
-#include "geometry/vertex_regions.hpp"
+#include <posekit/vertex_regions.hpp>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
@@ -28,9 +28,9 @@ std::optional<Eigen::MatrixX3d> as_rigid_as_possible(const Eigen::MatrixX3d& res
                                                      const AdjacencyLists& neighbours) {
   std::vector<char> moving(free.size());
   for (size_t v = 0; v < free.size(); ++v) moving[v] = free[v] != 0 || handles[v] != 0 ? 1 : 0;
-  const std::vector<char> with_rim = detail::within_rings(moving, neighbours, 1);
+  const std::vector<char> with_rim = within_rings(moving, neighbours, 1);
   std::vector<int> original;
-  const Mesh part = submesh(rest, faces, detail::faces_within(with_rim, faces), &original);
+  const Mesh part = submesh(rest, faces, faces_within(with_rim, faces), &original);
 
   TriangleMesh mesh;
   for (Eigen::Index v = 0; v < part.vertices.rows(); ++v) {

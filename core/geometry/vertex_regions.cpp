@@ -1,10 +1,10 @@
-#include "geometry/vertex_regions.hpp"
+#include <posekit/vertex_regions.hpp>
 
 #include <algorithm>
 #include <numeric>
 #include <utility>
 
-namespace posekit::detail {
+namespace posekit {
 
 std::vector<int> ring_distances(const std::vector<char>& flagged, const AdjacencyLists& neighbours, int limit) {
   std::vector<int> distance(flagged.size(), -1);
@@ -125,4 +125,4 @@ std::vector<std::vector<int>> join_intersecting(const std::vector<std::vector<in
   return joined;
 }
 
-}  // namespace posekit::detail
+}  // namespace posekit

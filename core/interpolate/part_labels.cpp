@@ -1,4 +1,4 @@
-#include "mesh/atomic_file.hpp"
+#include <posekit/atomic_file.hpp>
 
 #include <posekit/error.hpp>
 #include <posekit/integer_list.hpp>
@@ -30,7 +30,7 @@ void write_part_labels(const std::filesystem::path& file, const Eigen::VectorXi&
     text += std::to_string(face_labels(f));
     text += '\n';
   }
-  detail::write_file_atomically(file, text);
+  write_file_atomically(file, text);
 }
 
 }  // namespace posekit

@@ -1,4 +1,4 @@
-#include "mesh/atomic_file.hpp"
+#include <posekit/atomic_file.hpp>
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -12,7 +12,7 @@
 
 #include "posekit/error.hpp"
 
-namespace posekit::detail {
+namespace posekit {
 namespace {
 
 std::string describe_errno(int error) { return std::generic_category().message(error); }
@@ -88,4 +88,4 @@ void write_file_atomically(const std::filesystem::path& target, std::string_view
   temporary.commit();
 }
 
-}  // namespace posekit::detail
+}  // namespace posekit

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "mesh/atomic_file.hpp"
+#include <posekit/atomic_file.hpp>
 #include "mesh/polygon_soup.hpp"
 #include "posekit/error.hpp"
 #include "posekit/mesh_io.hpp"
@@ -63,7 +63,7 @@ void write_mesh(const std::filesystem::path& file, const Mesh& mesh) {
       break;
   }
   if (!ok) throw InputError(name, 0, "cannot format the mesh for writing");
-  detail::write_file_atomically(file, stream.str());
+  write_file_atomically(file, stream.str());
 }
 
 }  // namespace posekit

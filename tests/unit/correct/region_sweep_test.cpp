@@ -4,7 +4,7 @@
 
 #include "bent_arm.hpp"
 #include "correction_fixture.hpp"
-#include "geometry/vertex_regions.hpp"
+#include <posekit/vertex_regions.hpp>
 
 #include <gtest/gtest.h>
 

@@ -9,7 +9,7 @@
 
 #include <vector>
 
-namespace posekit::detail {
+namespace posekit {
 
 /// Edge distance of every vertex from the flagged ones (0 for those), -1 beyond `limit` edges.
 std::vector<int> ring_distances(const std::vector<char>& flagged, const AdjacencyLists& neighbours, int limit);
@@ -35,4 +35,4 @@ std::vector<std::vector<int>> connected_sets(const std::vector<char>& flagged, c
 std::vector<std::vector<int>> join_intersecting(const std::vector<std::vector<int>>& sets, const FacePairs& pairs,
                                                 const Eigen::MatrixX3i& faces);
 
-}  // namespace posekit::detail
+}  // namespace posekit
