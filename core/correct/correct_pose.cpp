@@ -40,7 +40,7 @@ void check_options(const CorrectionOptions& options) {
   require(std::isfinite(options.error_factor) && options.error_factor > 0.0,
           "error_factor must be finite and > 0, got " + std::to_string(options.error_factor));
   check_disabled_stages(options.disabled_stages);
-  validate_rk45_options(options.integration);
+  validate_rk45_step_control(options.integration);
 }
 
 void check_pose(const Eigen::MatrixX3d& pose, const char* name) {

@@ -145,9 +145,7 @@ RegionField fit_region(const std::vector<int>& region, const VertexClassificatio
   out.fitting_seconds = seconds_since(start);
 
   start = Clock::now();
-  Rk45Options integration = options.integration;
-  integration.t_begin = 0.0;
-  integration.t_end = time_scale;
+  const Rk45Options integration{options.integration, 0.0, time_scale};
   out.field = {fit.field(), time_scale};
   const auto integrate = [&](const RbfField& field) {
     Eigen::MatrixX3d positions = context.reference(region, Eigen::all);

@@ -7,7 +7,7 @@ namespace posekit::detail {
 
 PathLines::PathLines(const Eigen::MatrixX3d& reference, std::shared_ptr<const VertexTrajectories> trajectories,
                      std::vector<TimedField> fields, std::vector<int> field_of_vertex, Device& device,
-                     Rk45Options integration)
+                     Rk45StepControl integration)
     : reference_(reference),
       trajectories_(std::move(trajectories)),
       fields_(std::move(fields)),
@@ -90,10 +90,9 @@ std::vector<Eigen::MatrixX3d> PathLines::integrate(const std::vector<int>& verti
       for (size_t r = 0; r < rows.size(); ++r) samples[static_cast<size_t>(k)].row(rows[r]) = positions.row(static_cast<Eigen::Index>(r));
     };
     store(0);
-    Rk45Options segment = integration_;
     for (int k = 1; k <= segments; ++k) {
-      segment.t_begin = fields_[f].time_scale * (k - 1) / segments;
-      segment.t_end = fields_[f].time_scale * k / segments;
+      const Rk45Options segment{integration_, fields_[f].time_scale * (k - 1) / segments,
+                                fields_[f].time_scale * k / segments};
       device_->integrate_rk45(*uploaded, positions, segment);
       store(k);
     }

@@ -27,7 +27,7 @@ class PathLines {
   /// `reference` (#V by 3) starts every path; vertex v moves through fields[field_of_vertex[v]], or
   /// along `trajectories` where that is -1. `device` must outlive the object.
   PathLines(const Eigen::MatrixX3d& reference, std::shared_ptr<const VertexTrajectories> trajectories,
-            std::vector<TimedField> fields, std::vector<int> field_of_vertex, Device& device, Rk45Options integration);
+            std::vector<TimedField> fields, std::vector<int> field_of_vertex, Device& device, Rk45StepControl integration);
 
   /// Positions of `vertices` at times k / segments of the motion, k = 0 .. segments: element k is
   /// #vertices by 3, in the order given. Each vertex is integrated once per `segments`: the repairs
@@ -55,7 +55,7 @@ class PathLines {
   std::vector<TimedField> fields_;
   std::vector<int> field_of_vertex_;
   Device* device_ = nullptr;
-  Rk45Options integration_;
+  Rk45StepControl integration_;
   std::shared_ptr<Uploaded> uploaded_ = std::make_shared<Uploaded>();
   std::shared_ptr<SampleCache> cache_ = std::make_shared<SampleCache>();
 };

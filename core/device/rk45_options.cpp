@@ -19,6 +19,10 @@ namespace {
 void validate_rk45_options(const Rk45Options& options) {
   if (!std::isfinite(options.t_begin)) reject_option("t_begin", "finite", options.t_begin);
   if (!std::isfinite(options.t_end)) reject_option("t_end", "finite", options.t_end);
+  validate_rk45_step_control(options);
+}
+
+void validate_rk45_step_control(const Rk45StepControl& options) {
   if (!(std::isfinite(options.relative_tolerance) && options.relative_tolerance >= 0.0)) {
     reject_option("relative_tolerance", "finite and >= 0", options.relative_tolerance);
   }

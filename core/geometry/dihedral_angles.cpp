@@ -17,14 +17,16 @@ int corner_of_edge(const EdgeMap& edges, int face, int edge) {
   return -1;  // unreachable for consistent inputs: the face was listed as incident to the edge
 }
 
-Eigen::RowVector3d unnormalized_normal(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces, int f) {
+Eigen::RowVector3d unnormalized_normal(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
+                                       const Eigen::Ref<const Eigen::MatrixX3i>& faces, int f) {
   const Eigen::RowVector3d a = vertices.row(faces(f, 0));
   return (vertices.row(faces(f, 1)) - a).cross(vertices.row(faces(f, 2)) - a);
 }
 
 }  // namespace
 
-Eigen::VectorXd dihedral_angles(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces,
+Eigen::VectorXd dihedral_angles(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
+                                const Eigen::Ref<const Eigen::MatrixX3i>& faces,
                                 const EdgeMap& edges, const AdjacencyLists& incident_faces) {
   check_face_indices(faces, static_cast<int>(vertices.rows()));
   if (edges.face_edges.rows() != faces.rows()) {
@@ -65,7 +67,8 @@ Eigen::VectorXd dihedral_angles(const Eigen::MatrixX3d& vertices, const Eigen::M
   return angles;
 }
 
-Eigen::VectorXd dihedral_angles(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces) {
+Eigen::VectorXd dihedral_angles(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
+                                const Eigen::Ref<const Eigen::MatrixX3i>& faces) {
   const EdgeMap edges = edge_map(faces);
   return dihedral_angles(vertices, faces, edges, edge_faces(edges));
 }

@@ -7,8 +7,10 @@
 
 namespace posekit {
 
-Eigen::VectorXd edge_stretch(const Eigen::MatrixX3d& pose, const Eigen::MatrixX3d& first, const Eigen::MatrixX3d& second,
-                             const Eigen::MatrixX3i& faces, double shortest) {
+Eigen::VectorXd edge_stretch(const Eigen::Ref<const Eigen::MatrixX3d>& pose,
+                             const Eigen::Ref<const Eigen::MatrixX3d>& first,
+                             const Eigen::Ref<const Eigen::MatrixX3d>& second,
+                             const Eigen::Ref<const Eigen::MatrixX3i>& faces, double shortest) {
   if (first.rows() != pose.rows() || second.rows() != pose.rows()) {
     throw ArgumentError("edge stretch of poses with " + std::to_string(pose.rows()) + ", " +
                         std::to_string(first.rows()) + " and " + std::to_string(second.rows()) + " vertices");

@@ -7,7 +7,8 @@ namespace posekit {
 namespace {
 
 // Cross product of two edge vectors of face f: twice the area times the unit normal.
-Eigen::RowVector3d area_vector(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces, Eigen::Index f) {
+Eigen::RowVector3d area_vector(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
+                               const Eigen::Ref<const Eigen::MatrixX3i>& faces, Eigen::Index f) {
   const Eigen::RowVector3d a = vertices.row(faces(f, 0));
   const Eigen::RowVector3d b = vertices.row(faces(f, 1));
   const Eigen::RowVector3d c = vertices.row(faces(f, 2));
@@ -16,7 +17,8 @@ Eigen::RowVector3d area_vector(const Eigen::MatrixX3d& vertices, const Eigen::Ma
 
 }  // namespace
 
-Eigen::MatrixX3d face_normals(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces) {
+Eigen::MatrixX3d face_normals(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
+                              const Eigen::Ref<const Eigen::MatrixX3i>& faces) {
   check_face_indices(faces, static_cast<int>(vertices.rows()));
   Eigen::MatrixX3d normals(faces.rows(), 3);
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {
@@ -28,14 +30,16 @@ Eigen::MatrixX3d face_normals(const Eigen::MatrixX3d& vertices, const Eigen::Mat
   return normals;
 }
 
-Eigen::VectorXd face_areas(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces) {
+Eigen::VectorXd face_areas(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
+                           const Eigen::Ref<const Eigen::MatrixX3i>& faces) {
   check_face_indices(faces, static_cast<int>(vertices.rows()));
   Eigen::VectorXd areas(faces.rows());
   for (Eigen::Index f = 0; f < faces.rows(); ++f) areas(f) = 0.5 * area_vector(vertices, faces, f).norm();
   return areas;
 }
 
-Eigen::MatrixX3d vertex_normals(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces) {
+Eigen::MatrixX3d vertex_normals(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
+                                const Eigen::Ref<const Eigen::MatrixX3i>& faces) {
   check_face_indices(faces, static_cast<int>(vertices.rows()));
   Eigen::MatrixX3d normals = Eigen::MatrixX3d::Zero(vertices.rows(), 3);
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {

@@ -23,7 +23,8 @@ class FacePairTest {
   using Triangle = IntersectionKernel::Triangle_3;
 
   /// `vertices` (#V by 3) and `faces` (#F by 3) must outlive the test.
-  FacePairTest(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces) : vertices_(vertices), faces_(faces) {}
+  FacePairTest(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
+               const Eigen::Ref<const Eigen::MatrixX3i>& faces) : vertices_(vertices), faces_(faces) {}
 
   /// Whether face `f` is degenerate: its corners collinear or repeated.
   bool degenerate(int f) const {
@@ -83,8 +84,8 @@ class FacePairTest {
     return !shared[0] ? 0 : (!shared[1] ? 1 : 2);
   }
 
-  const Eigen::MatrixX3d& vertices_;
-  const Eigen::MatrixX3i& faces_;
+  const Eigen::Ref<const Eigen::MatrixX3d> vertices_;
+  const Eigen::Ref<const Eigen::MatrixX3i> faces_;
 };
 
 }  // namespace posekit::detail

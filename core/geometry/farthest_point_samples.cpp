@@ -6,7 +6,8 @@
 
 namespace posekit {
 
-std::vector<int> farthest_point_samples(const Eigen::MatrixX3d& vertices, int count, std::vector<int> seeds) {
+std::vector<int> farthest_point_samples(const Eigen::Ref<const Eigen::MatrixX3d>& vertices, int count,
+                                        std::vector<int> seeds) {
   const Eigen::Index n = vertices.rows();
   for (int v : seeds) {
     if (v < 0 || v >= n) throw ArgumentError("farthest_point_samples: seed " + std::to_string(v) + " is not a vertex");

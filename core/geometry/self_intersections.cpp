@@ -78,7 +78,8 @@ std::vector<FacePair> candidate_pairs(std::vector<FaceBox>& boxes) {
 
 }  // namespace
 
-std::vector<FacePair> self_intersecting_face_pairs(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces) {
+std::vector<FacePair> self_intersecting_face_pairs(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
+                                                   const Eigen::Ref<const Eigen::MatrixX3i>& faces) {
   check_face_indices(faces, static_cast<int>(vertices.rows()));
   detail::check_finite_vertices(vertices, "self_intersecting_faces");
 
@@ -130,7 +131,8 @@ std::vector<int> faces_in_pairs(const std::vector<std::pair<int, int>>& pairs) {
   return result;
 }
 
-std::vector<int> self_intersecting_faces(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces) {
+std::vector<int> self_intersecting_faces(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
+                                         const Eigen::Ref<const Eigen::MatrixX3i>& faces) {
   return faces_in_pairs(self_intersecting_face_pairs(vertices, faces));
 }
 

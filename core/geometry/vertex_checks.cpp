@@ -4,7 +4,7 @@
 
 namespace posekit::detail {
 
-void check_finite_vertices(const Eigen::MatrixX3d& vertices, const std::string& function) {
+void check_finite_vertices(const Eigen::Ref<const Eigen::MatrixX3d>& vertices, const std::string& function) {
   if (vertices.allFinite()) return;
   for (Eigen::Index v = 0; v < vertices.rows(); ++v) {
     if (!vertices.row(v).allFinite()) {

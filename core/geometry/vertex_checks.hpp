@@ -8,6 +8,6 @@
 namespace posekit::detail {
 
 /// Throws ArgumentError naming `function` and the first vertex with a NaN or infinite coordinate.
-void check_finite_vertices(const Eigen::MatrixX3d& vertices, const std::string& function);
+void check_finite_vertices(const Eigen::Ref<const Eigen::MatrixX3d>& vertices, const std::string& function);
 
 }  // namespace posekit::detail

@@ -41,7 +41,8 @@ constexpr double kFarRatio = 4.0;
 // the area vectors (twice the area times the unit normal, halved) and their area-weighted centre.
 class DipoleTree {
  public:
-  DipoleTree(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces) : vertices_(vertices), faces_(faces) {
+  DipoleTree(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
+             const Eigen::Ref<const Eigen::MatrixX3i>& faces) : vertices_(vertices), faces_(faces) {
     const auto count = static_cast<int>(faces.rows());
     order_.resize(static_cast<size_t>(count));
     std::iota(order_.begin(), order_.end(), 0);
@@ -138,8 +139,8 @@ class DipoleTree {
     nodes_[static_cast<size_t>(slot)] = node;
   }
 
-  const Eigen::MatrixX3d& vertices_;
-  const Eigen::MatrixX3i& faces_;
+  const Eigen::Ref<const Eigen::MatrixX3d> vertices_;
+  const Eigen::Ref<const Eigen::MatrixX3i> faces_;
   std::vector<int> order_;
   std::vector<Eigen::Vector3d> centroids_;
   std::vector<Eigen::Vector3d> area_vectors_;
@@ -148,8 +149,9 @@ class DipoleTree {
 
 }  // namespace
 
-Eigen::VectorXd winding_numbers(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces,
-                                const Eigen::MatrixX3d& points) {
+Eigen::VectorXd winding_numbers(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
+                                const Eigen::Ref<const Eigen::MatrixX3i>& faces,
+                                const Eigen::Ref<const Eigen::MatrixX3d>& points) {
   const DipoleTree tree(vertices, faces);
   Eigen::VectorXd winding(points.rows());
   tbb::parallel_for(Eigen::Index{0}, points.rows(),

@@ -18,9 +18,9 @@ namespace posekit {
 
 /// RK45 controls for correction, in the unit-sphere frame: 1e-5 relative and 1e-6 absolute error per
 /// step, far below the field's own fitting error, at a third of the field evaluations of tighter ones.
-/// correct_pose() sets the times itself (0 to the time scale); only the tolerances and step limits count.
-inline Rk45Options correction_integration_defaults() {
-  Rk45Options options;
+/// correct_pose() integrates from 0 to the time scale; the positions are in the unit-sphere frame.
+inline Rk45StepControl correction_integration_defaults() {
+  Rk45StepControl options;
   options.relative_tolerance = 1e-5;
   options.absolute_tolerance = 1e-6;
   return options;
@@ -40,9 +40,8 @@ struct CorrectionOptions {
   int max_centers = 30000;           ///< fitting stops here even when eps is not reached (>= 17)
   bool blocked_update = true;        ///< false: refactorize the whole RBF system every round
   std::vector<int> excluded_vertices;  ///< extra vertices kept out of the constraints
-  /// RK45 tolerances and step limits; its times are ignored (the field is integrated over the
-  /// whole motion).
-  Rk45Options integration = correction_integration_defaults();
+  /// RK45 tolerances and step limits of the integration through the field, over the whole motion.
+  Rk45StepControl integration = correction_integration_defaults();
   /// Time enters the field as time_scale * t (>= 0). The authors weigh time like space (1); 0
   /// chooses the root mean square vertex displacement (unit-sphere frame) of the field's region,
   /// clamped to [0.05, 1], which needed up to half the centers on the shared poses.

@@ -50,17 +50,22 @@ class DeviceField {
   int center_count_;
 };
 
-/// Controls of the adaptive Dormand-Prince 5(4) integration. Times and tolerances must be finite,
-/// relative_tolerance >= 0, absolute_tolerance > 0, initial_step > 0, min_step >= 0 and
-/// max_steps > 0; Device::integrate_rk45 throws ArgumentError naming the option otherwise.
-struct Rk45Options {
+/// How the adaptive Dormand-Prince 5(4) integration chooses its steps. A step is accepted when the
+/// root mean square over x, y, z of its local error estimate e_i / (absolute_tolerance +
+/// relative_tolerance * |x_i|) is at most 1 (positions in their own units, steps in those of t).
+struct Rk45StepControl {
+  double relative_tolerance = 1e-7;    ///< per-component relative error per step (>= 0, finite)
+  double absolute_tolerance = 1e-9;    ///< per-component absolute error per step (> 0, finite)
+  double initial_step = 1e-2;          ///< first trial step, as a length of time (> 0, finite)
+  double min_step = 1e-12;             ///< a particle whose step falls below this fails (>= 0)
+  int max_steps = 100000;              ///< accepted plus rejected steps before a particle fails (> 0)
+};
+
+/// One integration: from t_begin to t_end (finite; t_end < t_begin integrates backwards) under the
+/// step control. Device::integrate_rk45 throws ArgumentError naming an option out of its range.
+struct Rk45Options : Rk45StepControl {
   double t_begin = 0.0;                ///< start time of every particle
   double t_end = 1.0;                  ///< end time of every particle
-  double relative_tolerance = 1e-7;    ///< per-component relative error per step
-  double absolute_tolerance = 1e-9;    ///< per-component absolute error per step
-  double initial_step = 1e-2;          ///< first trial step, as a length of time
-  double min_step = 1e-12;             ///< a particle whose step falls below this fails
-  int max_steps = 100000;              ///< accepted plus rejected steps before a particle fails
 };
 
 /// How one particle's integration ended.
@@ -86,6 +91,9 @@ struct Rk45Summary {
 /// absolute_tolerance <= 0, initial_step <= 0, min_step < 0, max_steps <= 0), as
 /// Device::integrate_rk45 does before any work.
 void validate_rk45_options(const Rk45Options& options);
+
+/// The same checks for the step control alone (as correct_pose() does for its options).
+void validate_rk45_step_control(const Rk45StepControl& options);
 
 /// Adds up per-particle statistics.
 Rk45Summary summarize(const std::vector<Rk45ParticleStats>& stats);

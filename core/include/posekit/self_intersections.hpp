@@ -23,15 +23,16 @@ namespace posekit {
 /// Intersecting face pairs (f, g) with f < g, sorted, of the #V by 3 `vertices` and #F by 3 `faces`;
 /// a degenerate face f appears once as (f, f). Throws ArgumentError on a face index outside [0, #V)
 /// or a coordinate that is not finite.
-std::vector<std::pair<int, int>> self_intersecting_face_pairs(const Eigen::MatrixX3d& vertices,
-                                                              const Eigen::MatrixX3i& faces);
+std::vector<std::pair<int, int>> self_intersecting_face_pairs(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
+                                                              const Eigen::Ref<const Eigen::MatrixX3i>& faces);
 
 /// Sorted, distinct faces named in `pairs` (as from self_intersecting_face_pairs()).
 std::vector<int> faces_in_pairs(const std::vector<std::pair<int, int>>& pairs);
 
 /// Sorted indices of the faces that intersect some other face (or are degenerate), i.e. the distinct
 /// faces of self_intersecting_face_pairs(). `vertices` #V by 3, `faces` #F by 3.
-std::vector<int> self_intersecting_faces(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces);
+std::vector<int> self_intersecting_faces(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
+                                         const Eigen::Ref<const Eigen::MatrixX3i>& faces);
 
 /// Faces listed in `mesh_faces` but not in `reference_faces` (both face index lists of poses sharing
 /// one connectivity, in any order): the intersections a pose has that its reference does not. Sorted,

@@ -11,7 +11,8 @@ namespace posekit {
 /// `points`: the sum of the solid angles its faces subtend, over 4 pi. Faces near a point count
 /// exactly, far clusters by their dipole (error below 0.02): O(#F log #F + #P log #F), parallel
 /// over points.
-Eigen::VectorXd winding_numbers(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces,
-                                const Eigen::MatrixX3d& points);
+Eigen::VectorXd winding_numbers(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
+                                const Eigen::Ref<const Eigen::MatrixX3i>& faces,
+                                const Eigen::Ref<const Eigen::MatrixX3d>& points);
 
 }  // namespace posekit

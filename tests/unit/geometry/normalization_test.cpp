@@ -82,7 +82,7 @@ TEST(UnitSphereNormalization, PoseSetOverloadUsesEveryPose) {
 
 TEST(UnitSphereNormalization, RejectsDegenerateInput) {
   EXPECT_THROW(unit_sphere_normalization(Eigen::MatrixX3d(0, 3)), ArgumentError);
-  EXPECT_THROW(shared_unit_sphere_normalization(std::vector<std::reference_wrapper<const Eigen::MatrixX3d>>{}),
+  EXPECT_THROW(shared_unit_sphere_normalization(std::vector<Eigen::Ref<const Eigen::MatrixX3d>>{}),
                ArgumentError);
   EXPECT_THROW(unit_sphere_normalization(Eigen::MatrixX3d::Constant(4, 3, 2.5)), ArgumentError);
   Eigen::MatrixX3d with_infinity = Eigen::MatrixX3d::Identity(3, 3);
