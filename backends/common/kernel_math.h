@@ -156,23 +156,29 @@ PK_INLINE int pk_is_finite(double x) {
 #define PK_LOG_SQRT_HALF_HIGH_WORD 0x3fe6a09eu
 #define PK_LOG_TWO_POW_52_HIGH_WORD 0x43300000u
 
-PK_INLINE double pk_log(double x) {
-  pk_u64 bits = pk_bits_of(x);
-  bits += (pk_u64)(PK_LOG_ONE_HIGH_WORD - PK_LOG_SQRT_HALF_HIGH_WORD) << 32;
-  const double k =
-      pk_double_from_bits((bits >> 52) | ((pk_u64)PK_LOG_TWO_POW_52_HIGH_WORD << 32)) -
-      PK_LOG_EXPONENT_BIAS_MAGIC;
-  bits = (bits & (((pk_u64)1 << 52) - 1)) + ((pk_u64)PK_LOG_SQRT_HALF_HIGH_WORD << 32);
-  const double f = pk_double_from_bits(bits) - 1.0;
-  const double half_f_squared = 0.5 * f * f;
-  const double s = f / (2.0 + f);
-  const double z = s * s;
-  const double w = z * z;
-  const double even = w * (PK_LOG_LG2 + w * (PK_LOG_LG4 + w * PK_LOG_LG6));
-  const double odd = z * (PK_LOG_LG1 + w * (PK_LOG_LG3 + w * (PK_LOG_LG5 + w * PK_LOG_LG7)));
-  const double r = odd + even;
-  return s * (half_f_squared + r) + k * PK_LOG_LN2_LO - half_f_squared + f + k * PK_LOG_LN2_HI;
-}
+/* The body of pk_log for a floating type and the unsigned integer type of its bits, with the casts
+ * between them: written once, defined below for double and, lane by lane, for OpenCL's vectors of
+ * doubles (kernels/opencl/vector_math.cl), which must compute the same operations in the same
+ * order. */
+#define PK_DEFINE_LOG(name, real_t, bits_t, bits_of, real_from_bits)                              \
+  PK_INLINE real_t name(real_t x) {                                                               \
+    bits_t bits = bits_of(x);                                                                     \
+    bits += (pk_u64)(PK_LOG_ONE_HIGH_WORD - PK_LOG_SQRT_HALF_HIGH_WORD) << 32;                    \
+    const real_t k = real_from_bits((bits >> 52) | ((pk_u64)PK_LOG_TWO_POW_52_HIGH_WORD << 32)) - \
+                     PK_LOG_EXPONENT_BIAS_MAGIC;                                                  \
+    bits = (bits & (((pk_u64)1 << 52) - 1)) + ((pk_u64)PK_LOG_SQRT_HALF_HIGH_WORD << 32);         \
+    const real_t f = real_from_bits(bits) - 1.0;                                                  \
+    const real_t half_f_squared = 0.5 * f * f;                                                    \
+    const real_t s = f / (2.0 + f);                                                               \
+    const real_t z = s * s;                                                                       \
+    const real_t w = z * z;                                                                       \
+    const real_t even = w * (PK_LOG_LG2 + w * (PK_LOG_LG4 + w * PK_LOG_LG6));                     \
+    const real_t odd = z * (PK_LOG_LG1 + w * (PK_LOG_LG3 + w * (PK_LOG_LG5 + w * PK_LOG_LG7)));   \
+    const real_t r = odd + even;                                                                  \
+    return s * (half_f_squared + r) + k * PK_LOG_LN2_LO - half_f_squared + f + k * PK_LOG_LN2_HI; \
+  }
+
+PK_DEFINE_LOG(pk_log, double, pk_u64, pk_bits_of, pk_double_from_bits)
 
 /* ---------------------------------------------------------------------------------------------- */
 /* 3. RBF kernel and polynomial basis                                                             */
@@ -184,17 +190,21 @@ PK_INLINE double pk_log(double x) {
 /* Squared distance between two points of R^4 from coordinate differences. Differences keep close
  * pairs accurate; |a|^2 + |b|^2 - 2 a.b would cancel catastrophically. The order of the additions
  * is part of the definition. */
-PK_INLINE double pk_squared_distance(double dx, double dy, double dz, double dt) {
-  return dx * dx + dy * dy + dz * dz + dt * dt;
-}
+#define PK_DEFINE_SQUARED_DISTANCE(name, real_t)                  \
+  PK_INLINE real_t name(real_t dx, real_t dy, real_t dz, real_t dt) { \
+    return dx * dx + dy * dy + dz * dz + dt * dt;                     \
+  }
+PK_DEFINE_SQUARED_DISTANCE(pk_squared_distance, double)
 
 /* phi(r) = r^2 ln r written in r2 = r^2: phi = 0.5 r2 ln r2. Adding DBL_MIN keeps the logarithm's
  * argument a positive normal number, so r2 = 0 gives 0.5 * 0 * ln(DBL_MIN) = 0 (as -0.0) without a
  * branch; for r2 >= 2^-969 the addition does not change r2 at all. r2 = inf gives inf and NaN gives
  * NaN. */
-PK_INLINE double pk_phi_from_squared_distance(double r2) {
-  return 0.5 * r2 * pk_log(r2 + PK_DBL_MIN);
-}
+#define PK_DEFINE_PHI_FROM_SQUARED_DISTANCE(name, real_t, log) \
+  PK_INLINE real_t name(real_t r2) {                            \
+    return 0.5 * r2 * log(r2 + PK_DBL_MIN);                     \
+  }
+PK_DEFINE_PHI_FROM_SQUARED_DISTANCE(pk_phi_from_squared_distance, double, pk_log)
 
 /* The quadratic polynomial basis of R^4: 15 monomials of (x, y, z, t) in this order (the rows of
  * posekit::RbfPolynomial and the last 15 columns of an assembled RBF block):

@@ -39,34 +39,11 @@ typedef ulong2 pk_uvec;
 #error "PK_VECTOR_WIDTH must be 2, 4 or 8"
 #endif
 
-/* pk_log of kernel_math.h, lane by lane (same constants, same operations in the same order). */
-PK_INLINE pk_vec pk_log_vec(pk_vec x) {
-  pk_uvec bits = PK_AS_UVEC(x);
-  bits += (pk_u64)(PK_LOG_ONE_HIGH_WORD - PK_LOG_SQRT_HALF_HIGH_WORD) << 32;
-  const pk_vec k =
-      PK_AS_VEC((bits >> 52) | ((pk_u64)PK_LOG_TWO_POW_52_HIGH_WORD << 32)) -
-      PK_LOG_EXPONENT_BIAS_MAGIC;
-  bits = (bits & (((pk_u64)1 << 52) - 1)) + ((pk_u64)PK_LOG_SQRT_HALF_HIGH_WORD << 32);
-  const pk_vec f = PK_AS_VEC(bits) - 1.0;
-  const pk_vec half_f_squared = 0.5 * f * f;
-  const pk_vec s = f / (2.0 + f);
-  const pk_vec z = s * s;
-  const pk_vec w = z * z;
-  const pk_vec even = w * (PK_LOG_LG2 + w * (PK_LOG_LG4 + w * PK_LOG_LG6));
-  const pk_vec odd = z * (PK_LOG_LG1 + w * (PK_LOG_LG3 + w * (PK_LOG_LG5 + w * PK_LOG_LG7)));
-  const pk_vec r = odd + even;
-  return s * (half_f_squared + r) + k * PK_LOG_LN2_LO - half_f_squared + f + k * PK_LOG_LN2_HI;
-}
-
-/* pk_squared_distance, lane by lane. */
-PK_INLINE pk_vec pk_squared_distance_vec(pk_vec dx, pk_vec dy, pk_vec dz, pk_vec dt) {
-  return dx * dx + dy * dy + dz * dz + dt * dt;
-}
-
-/* pk_phi_from_squared_distance, lane by lane. */
-PK_INLINE pk_vec pk_phi_from_squared_distance_vec(pk_vec r2) {
-  return 0.5 * r2 * pk_log_vec(r2 + PK_DBL_MIN);
-}
+/* pk_log, pk_squared_distance and pk_phi_from_squared_distance of kernel_math.h, lane by lane:
+ * the same definitions for the vector type. */
+PK_DEFINE_LOG(pk_log_vec, pk_vec, pk_uvec, PK_AS_UVEC, PK_AS_VEC)
+PK_DEFINE_SQUARED_DISTANCE(pk_squared_distance_vec, pk_vec)
+PK_DEFINE_PHI_FROM_SQUARED_DISTANCE(pk_phi_from_squared_distance_vec, pk_vec, pk_log_vec)
 
 /* Term `term` (0..14) of pk_polynomial_basis at PK_VECTOR_WIDTH points, in the order kernel_math.h
  * documents: 1, x, y, z, t, x^2, x*y, x*z, x*t, y^2, y*z, y*t, z^2, z*t, t^2. */

@@ -25,33 +25,36 @@ namespace posekit {
 
 /// Settings of BlendedDeformer; lengths and weights refer to the unit-area frame of the reference.
 struct BlendOptions {
-  /// m: Laplace-Beltrami eigenfunctions used as weights (ignored when skinning weights are given).
+  /// m: Laplace-Beltrami eigenfunctions used as weights (>= 1; ignored when skinning weights are
+  /// given).
   int eigenfunctions = 20;
   /// Fraction of the 4mK dictionary atoms kept by k-medoids (1 keeps them all); never fewer than
-  /// 4m, and the reference's atoms of a constant weight function (if any) are always kept.
+  /// 4m, and the reference's atoms of a constant weight function (if any) are always kept. In (0, 1].
   double atom_fraction = 0.5;
   /// Rotation clusters (k-means on motion across the examples; with skinning weights 0 means one per
-  /// weight, by largest weight).
+  /// weight, by largest weight). >= 0.
   int rotation_clusters = 40;
-  /// Weight of position against rotation in the cluster features (rotation_clusters()).
+  /// Weight of position (unit-area frame) against rotation (radians) in the cluster features
+  /// (rotation_clusters(); >= 0).
   double cluster_position_weight = 1.0;
-  /// alpha_c: weight of each linear constraint.
+  /// alpha_c: weight of each linear constraint's squared distance against the ARAP energy (> 0).
   double constraint_weight = 1e3;
-  /// alpha_s: weight of the smoothness of the blended maps.
+  /// alpha_s: weight of the smoothness of the blended maps (>= 0).
   double smoothness_weight = 1e-3;
   /// eps, relative to the mean diagonal of the ARAP matrix: picks the least-norm maps among equivalent
-  /// ones (the dictionary's atoms are linearly dependent).
+  /// ones (the dictionary's atoms are linearly dependent). > 0.
   double ridge = 1e-8;
   /// Elastic-net sparsity of the initial solve: the L1 weight as a fraction of the smallest weight that
-  /// makes every map zero. 0 turns the L1 term off (one solve with the initial factorization).
+  /// makes every map zero, in [0, 1). 0 turns the L1 term off (one solve with the initial
+  /// factorization).
   double sparsity = 0.0;
-  /// Local/global iterations with the average ARAP energy, then with the minimal ARAP energy.
+  /// Local/global iterations with the average ARAP energy, then with the minimal ARAP energy (>= 0).
   int average_iterations = 4;
   int minimal_iterations = 4;
   /// Minimal ARAP picks its example by the energy after that example's global step (one forward
   /// substitution per example and iteration) instead of the energy at the current maps.
   bool example_choice_after_solve = false;
-  /// A stage stops early when an iteration lowers the energy by less than this fraction.
+  /// A stage stops early when an iteration lowers the energy by less than this fraction of it (>= 0).
   double tolerance = 1e-5;
   /// Estimate the global scale s (closed form); false keeps s = 1.
   bool estimate_scale = true;

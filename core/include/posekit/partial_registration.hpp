@@ -14,27 +14,28 @@ namespace posekit {
 
 /// Settings of the scan fit.
 struct ScanFitOptions {
-  /// Rounds of non-rigid ICP (match, then deform).
+  /// Rounds of non-rigid ICP (match, then deform; >= 0).
   int iterations = 10;
   /// Local/global iterations of each round's deformation, which starts from the previous round's:
-  /// average-ARAP ones (which pull towards the mean of the examples) and minimal-ARAP ones.
+  /// average-ARAP ones (which pull towards the mean of the examples) and minimal-ARAP ones (>= 0).
   int round_average_iterations = 0;
   int round_minimal_iterations = 4;
-  /// Scan points used as constraints in each round, spread evenly over the scan's vertex order.
+  /// Scan points used as constraints in each round, spread evenly over the scan's vertex order (>= 1).
   int max_scan_points = 2000;
-  /// Weight of each matched scan point relative to a feature constraint's weight of 1.
+  /// Weight of each matched scan point relative to a feature constraint's weight of 1 (> 0).
   double scan_weight = 0.05;
-  /// A match counts only when the scan's normal and the mesh's normal there differ by less than this.
+  /// A match counts only when the scan's normal and the mesh's normal there differ by less than this
+  /// angle, in degrees (in (0, 180]).
   double max_normal_angle_degrees = 60.0;
-  /// Matches farther than this many times the median match distance are dropped.
+  /// Matches farther than this many times the median match distance are dropped (> 0).
   double rejection_factor = 3.0;
   /// Geodesic discs around each feature point whose weighted centroids are constrained too, with
-  /// radii radius * i / rings for i = 1..rings; 0 keeps only the feature points themselves.
+  /// radii radius * i / rings for i = 1..rings; 0 keeps only the feature points themselves (>= 0).
   int feature_rings = 10;
-  /// Largest disc radius, as a fraction of the square root of the reference's area.
+  /// Largest disc radius, as a fraction of the square root of the reference's area (> 0).
   double feature_radius = 0.15;
   /// Lengths on the scan per unit length of the examples (1: the scan is in the examples' units; the
-  /// deformation finds its own scale, this only sizes the discs on the scan).
+  /// deformation finds its own scale, this only sizes the discs on the scan). > 0.
   double scan_scale = 1.0;
 };
 

@@ -6,6 +6,8 @@
 
 #include "device/backend_factory.hpp"
 
+#include "scoped_environment.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -17,27 +19,7 @@
 namespace posekit {
 namespace {
 
-// Sets an environment variable for the lifetime of the object and restores the previous state.
-class ScopedEnvironment {
- public:
-  ScopedEnvironment(const char* name, const char* value) : name_(name) {
-    if (const char* previous = std::getenv(name)) previous_ = previous;
-    setenv(name, value, 1);
-  }
-  ~ScopedEnvironment() {
-    if (previous_) {
-      setenv(name_.c_str(), previous_->c_str(), 1);
-    } else {
-      unsetenv(name_.c_str());
-    }
-  }
-  ScopedEnvironment(const ScopedEnvironment&) = delete;
-  ScopedEnvironment& operator=(const ScopedEnvironment&) = delete;
-
- private:
-  std::string name_;
-  std::optional<std::string> previous_;
-};
+using posekit::testing::ScopedEnvironment;
 
 std::optional<BackendStatus> find_backend(const std::string& name) {
   for (const BackendStatus& status : list_backends()) {

@@ -3,6 +3,7 @@
 // life (every operation, a field outliving its device) produces no message, and the registry
 // switches the layer on through POSEKIT_VULKAN_VALIDATION.
 #include "vulkan_test_support.hpp"
+#include "scoped_environment.hpp"
 
 #include "vulkan/vulkan_buffer.hpp"
 #include "vulkan/vulkan_validation.hpp"
@@ -19,27 +20,7 @@
 namespace posekit::vulkan {
 namespace {
 
-// Sets an environment variable for the lifetime of the object and restores the previous state.
-class ScopedEnvironment {
- public:
-  ScopedEnvironment(const char* name, const char* value) : name_(name) {
-    if (const char* previous = std::getenv(name)) previous_ = previous;
-    setenv(name, value, 1);
-  }
-  ~ScopedEnvironment() {
-    if (previous_) {
-      setenv(name_.c_str(), previous_->c_str(), 1);
-    } else {
-      unsetenv(name_.c_str());
-    }
-  }
-  ScopedEnvironment(const ScopedEnvironment&) = delete;
-  ScopedEnvironment& operator=(const ScopedEnvironment&) = delete;
-
- private:
-  std::string name_;
-  std::optional<std::string> previous_;
-};
+using posekit::testing::ScopedEnvironment;
 
 Points4 random_points(std::mt19937_64& engine, Eigen::Index count) {
   std::uniform_real_distribution<double> coordinate(-1.0, 1.0);
