@@ -10,7 +10,7 @@
 
 namespace posekit {
 
-EdgeMap edge_map(const Eigen::MatrixX3i& faces) {
+EdgeMap edge_map(const Eigen::Ref<const Eigen::MatrixX3i>& faces) {
   const Eigen::Index face_count = faces.rows();
   if (faces.size() > 0 && faces.minCoeff() < 0) {
     throw ArgumentError("edge_map: faces contain a negative vertex index");

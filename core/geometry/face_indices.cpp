@@ -5,7 +5,7 @@
 
 namespace posekit {
 
-void check_face_indices(const Eigen::MatrixX3i& faces, int vertex_count) {
+void check_face_indices(const Eigen::Ref<const Eigen::MatrixX3i>& faces, int vertex_count) {
   if (vertex_count < 0) {
     throw ArgumentError("vertex_count must not be negative (got " + std::to_string(vertex_count) + ")");
   }

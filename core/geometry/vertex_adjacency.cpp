@@ -6,7 +6,7 @@
 
 namespace posekit {
 
-AdjacencyLists vertex_neighbours(const Eigen::MatrixX3i& faces, int vertex_count) {
+AdjacencyLists vertex_neighbours(const Eigen::Ref<const Eigen::MatrixX3i>& faces, int vertex_count) {
   check_face_indices(faces, vertex_count);
   const Eigen::Index face_count = faces.rows();
 
@@ -44,7 +44,7 @@ AdjacencyLists vertex_neighbours(const Eigen::MatrixX3i& faces, int vertex_count
   return AdjacencyLists(std::move(compact_offsets), std::move(indices));
 }
 
-AdjacencyLists vertex_faces(const Eigen::MatrixX3i& faces, int vertex_count) {
+AdjacencyLists vertex_faces(const Eigen::Ref<const Eigen::MatrixX3i>& faces, int vertex_count) {
   check_face_indices(faces, vertex_count);
   const Eigen::Index face_count = faces.rows();
 

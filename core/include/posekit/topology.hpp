@@ -61,7 +61,7 @@ struct EdgeMap {
 
 /// Unique edges of the #F by 3 face list `faces` and the face-to-edge map, in O(#F log #F).
 /// Throws ArgumentError when a vertex index is negative.
-EdgeMap edge_map(const Eigen::MatrixX3i& faces);
+EdgeMap edge_map(const Eigen::Ref<const Eigen::MatrixX3i>& faces);
 
 /// Faces incident to each edge of `edges` (edge_map(faces) of the same #F by 3 `faces`), ascending.
 /// An interior manifold edge has 2 faces, a boundary edge 1, a non-manifold edge 3 or more; a face
@@ -70,14 +70,14 @@ AdjacencyLists edge_faces(const EdgeMap& edges);
 
 /// One-ring of each vertex: the distinct vertices sharing an edge with it, ascending, never itself.
 /// `faces` is #F by 3 with indices below `vertex_count`; throws ArgumentError otherwise.
-AdjacencyLists vertex_neighbours(const Eigen::MatrixX3i& faces, int vertex_count);
+AdjacencyLists vertex_neighbours(const Eigen::Ref<const Eigen::MatrixX3i>& faces, int vertex_count);
 
 /// Faces incident to each vertex, ascending and distinct (#V lists for `vertex_count` vertices).
 /// `faces` is #F by 3 with indices below `vertex_count`; throws ArgumentError otherwise.
-AdjacencyLists vertex_faces(const Eigen::MatrixX3i& faces, int vertex_count);
+AdjacencyLists vertex_faces(const Eigen::Ref<const Eigen::MatrixX3i>& faces, int vertex_count);
 
 /// Throws ArgumentError unless every entry of the #F by 3 `faces` lies in [0, vertex_count).
 /// The message names the first offending face and corner.
-void check_face_indices(const Eigen::MatrixX3i& faces, int vertex_count);
+void check_face_indices(const Eigen::Ref<const Eigen::MatrixX3i>& faces, int vertex_count);
 
 }  // namespace posekit
