@@ -43,7 +43,7 @@ Eigen::RowVectorXd BlendedDeformer::State::constraint_row(const LinearConstraint
   return row;
 }
 
-Eigen::MatrixX3d BlendedDeformer::State::internal_targets(const Eigen::MatrixX3d& targets) const {
+Eigen::MatrixX3d BlendedDeformer::State::internal_targets(const Eigen::Ref<const Eigen::MatrixX3d>& targets) const {
   if (constraints.empty()) throw ArgumentError("blended deformation: no constraint is set");
   if (targets.rows() != static_cast<Eigen::Index>(constraints.size())) {
     throw ArgumentError("blended deformation: " + std::to_string(targets.rows()) + " targets for " +

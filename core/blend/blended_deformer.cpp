@@ -39,7 +39,8 @@ void check_options(const BlendOptions& o) {
 }
 
 // Rotation and translation (mass-weighted Kabsch) that carry `moving` onto `fixed`.
-Eigen::MatrixX3d rigidly_aligned(const Eigen::MatrixX3d& moving, const Eigen::MatrixX3d& fixed, const Eigen::VectorXd& mass) {
+Eigen::MatrixX3d rigidly_aligned(const Eigen::Ref<const Eigen::MatrixX3d>& moving,
+                                 const Eigen::Ref<const Eigen::MatrixX3d>& fixed, const Eigen::VectorXd& mass) {
   const double total = mass.sum();
   const Eigen::RowVector3d moving_center = (mass.transpose() * moving) / total;
   const Eigen::RowVector3d fixed_center = (mass.transpose() * fixed) / total;
@@ -252,7 +253,7 @@ int BlendedDeformer::example_count() const { return state_->example_count(); }
 int BlendedDeformer::cluster_count() const { return state_->cluster_count; }
 const std::vector<int>& BlendedDeformer::clusters() const { return state_->clusters; }
 
-Eigen::MatrixX3d BlendedDeformer::vertices(const Eigen::MatrixX3d& transformations) const {
+Eigen::MatrixX3d BlendedDeformer::vertices(const Eigen::Ref<const Eigen::MatrixX3d>& transformations) const {
   const State& s = *state_;
   if (transformations.rows() != s.atom_count()) {
     throw ArgumentError("BlendedDeformer::vertices: " + std::to_string(transformations.rows()) +

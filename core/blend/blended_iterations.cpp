@@ -29,7 +29,8 @@ double soft_threshold(double value, double threshold) {
 
 }  // namespace
 
-void BlendedDeformer::State::local_step(const Eigen::MatrixX3d& transformations, std::vector<Eigen::Matrix3d>& rotations,
+void BlendedDeformer::State::local_step(const Eigen::Ref<const Eigen::MatrixX3d>& transformations,
+                                        std::vector<Eigen::Matrix3d>& rotations,
                                         Eigen::VectorXd& dots) const {
   const int blocks = block_count();
   rotations.resize(static_cast<size_t>(blocks));
@@ -52,7 +53,7 @@ void BlendedDeformer::State::local_step(const Eigen::MatrixX3d& transformations,
   for (int j = 0; j < blocks; ++j) dots(j / cluster_count) += block_dots[static_cast<size_t>(j)];
 }
 
-void BlendedDeformer::State::accumulate_blocks(int first, int last, const Eigen::MatrixX3d& stacked,
+void BlendedDeformer::State::accumulate_blocks(int first, int last, const Eigen::Ref<const Eigen::MatrixX3d>& stacked,
                                                Eigen::MatrixX3d& side) const {
   const int rows = atom_count();
   const int chunk = std::max(32, (rows + 3) / 4);
@@ -95,7 +96,8 @@ Eigen::MatrixX3d BlendedDeformer::State::arap_right_side(const std::vector<Eigen
   return side;
 }
 
-Eigen::MatrixX3d BlendedDeformer::State::initial_solve(const Eigen::MatrixX3d& right_side, double& energy) const {
+Eigen::MatrixX3d BlendedDeformer::State::initial_solve(const Eigen::Ref<const Eigen::MatrixX3d>& right_side,
+                                                       double& energy) const {
   if (options.sparsity <= 0.0) {
     Eigen::MatrixX3d t = initial.solve(right_side);
     energy = -t.cwiseProduct(right_side).sum();
@@ -152,7 +154,7 @@ bool converged(double previous, double current, double tolerance) {
 
 }  // namespace
 
-BlendResult BlendedDeformer::deform(const Eigen::MatrixX3d& targets) const {
+BlendResult BlendedDeformer::deform(const Eigen::Ref<const Eigen::MatrixX3d>& targets) const {
   const State& s = *state_;
   const Clock::time_point start = Clock::now();
   const Eigen::MatrixX3d p = s.internal_targets(targets);
@@ -169,7 +171,7 @@ BlendResult BlendedDeformer::deform(const Eigen::MatrixX3d& targets) const {
   return continued;
 }
 
-BlendResult BlendedDeformer::deform(const Eigen::MatrixX3d& targets, const BlendResult& start_from,
+BlendResult BlendedDeformer::deform(const Eigen::Ref<const Eigen::MatrixX3d>& targets, const BlendResult& start_from,
                                     int average_iterations, int minimal_iterations) const {
   const State& s = *state_;
   const Clock::time_point start = Clock::now();
@@ -195,7 +197,8 @@ BlendResult BlendedDeformer::deform(const Eigen::MatrixX3d& targets, const Blend
     double scale = 1.0;
     double energy = 0.0;
   };
-  const auto global_step = [&](const Eigen::MatrixX3d& arap_side, double example_energy, double fallback_scale) {
+  const auto global_step = [&](const Eigen::Ref<const Eigen::MatrixX3d>& arap_side, double example_energy,
+                               double fallback_scale) {
     GlobalStep step;
     const Eigen::MatrixX3d arap_maps = s.global.solve(arap_side);
     step.scale = 1.0;

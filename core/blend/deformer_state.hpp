@@ -44,17 +44,18 @@ struct BlendedDeformer::State {
   /// The row c_r^T D of one constraint; throws ArgumentError for a bad constraint.
   Eigen::RowVectorXd constraint_row(const LinearConstraint& constraint) const;
   /// Targets in the internal frame.
-  Eigen::MatrixX3d internal_targets(const Eigen::MatrixX3d& targets) const;
+  Eigen::MatrixX3d internal_targets(const Eigen::Ref<const Eigen::MatrixX3d>& targets) const;
   /// Rank-one change of both matrices and factors by sigma * row^T row; refactorizes when a downdate fails.
   void rank_update(const Eigen::RowVectorXd& row, double sigma);
 
   /// Local step: for every example k and cluster c the rotation closest to S_kc = T^T G_kc;
   /// dots(k) = sum_c <R_kc, S_kc>, which gives the closed-form scale.
-  void local_step(const Eigen::MatrixX3d& transformations, std::vector<Eigen::Matrix3d>& rotations,
+  void local_step(const Eigen::Ref<const Eigen::MatrixX3d>& transformations, std::vector<Eigen::Matrix3d>& rotations,
                   Eigen::VectorXd& dots) const;
   /// side += sum over blocks j in [first, last) of G_j m_j (G_j: the three columns of block j, m_j:
   /// the 3 by 3 matrix at rows 3j of `stacked`), streaming the columns once, rows split over threads.
-  void accumulate_blocks(int first, int last, const Eigen::MatrixX3d& stacked, Eigen::MatrixX3d& side) const;
+  void accumulate_blocks(int first, int last, const Eigen::Ref<const Eigen::MatrixX3d>& stacked,
+                         Eigen::MatrixX3d& side) const;
   /// N by 3 ARAP part of the global step's right side: sum_k coefficients(k) sum_c G_kc R_kc^T
   /// (examples with coefficient 0 cost nothing).
   Eigen::MatrixX3d arap_right_side(const std::vector<Eigen::Matrix3d>& rotations, const Eigen::VectorXd& coefficients) const;
@@ -64,7 +65,7 @@ struct BlendedDeformer::State {
   /// The initial transformations from the constraint part of the right side (N by 3), without
   /// rotations: one solve with the initial factors, or elastic-net coordinate descent when
   /// options.sparsity > 0. `energy` receives the initial energy less the constant sum w |p|^2.
-  Eigen::MatrixX3d initial_solve(const Eigen::MatrixX3d& right_side, double& energy) const;
+  Eigen::MatrixX3d initial_solve(const Eigen::Ref<const Eigen::MatrixX3d>& right_side, double& energy) const;
 };
 
 }  // namespace posekit

@@ -24,7 +24,7 @@ DictionaryChange::DictionaryChange(const BlendDictionary& from, const BlendDicti
   factor_ = llt.matrixL();
 }
 
-Eigen::MatrixX3d DictionaryChange::operator()(const Eigen::MatrixX3d& transformations) const {
+Eigen::MatrixX3d DictionaryChange::operator()(const Eigen::Ref<const Eigen::MatrixX3d>& transformations) const {
   if (transformations.rows() != cross_.cols()) {
     throw ArgumentError("DictionaryChange: " + std::to_string(transformations.rows()) + " transformation rows for a "
                         "dictionary of " + std::to_string(cross_.cols()) + " atoms");

@@ -16,7 +16,8 @@ namespace posekit::detail {
 
 /// Distances from `source` to every vertex over the one-rings `ring` (vertex_neighbours of the mesh),
 /// Dijkstra stopped beyond `limit` (farther vertices keep infinity).
-inline Eigen::VectorXd edge_distances(const Eigen::MatrixX3d& vertices, const AdjacencyLists& ring, int source,
+inline Eigen::VectorXd edge_distances(const Eigen::Ref<const Eigen::MatrixX3d>& vertices, const AdjacencyLists& ring,
+                                      int source,
                                       double limit) {
   Eigen::VectorXd distance = Eigen::VectorXd::Constant(vertices.rows(), std::numeric_limits<double>::infinity());
   using Entry = std::pair<double, int>;

@@ -43,7 +43,8 @@ double falloff(double t) {
 }  // namespace
 
 FeatureConstraints feature_constraints(const BlendedDeformer& deformer, const Mesh& scan, const std::vector<int>& features,
-                                       const Eigen::MatrixX3d& feature_positions, const ScanFitOptions& options) {
+                                       const Eigen::Ref<const Eigen::MatrixX3d>& feature_positions,
+                                       const ScanFitOptions& options) {
   if (scan.vertices.rows() == 0) throw ArgumentError("the scan has no vertex");
   if (!scan.vertices.allFinite()) throw ArgumentError("the scan has a non-finite coordinate");
   check_face_indices(scan.faces, static_cast<int>(scan.vertices.rows()));

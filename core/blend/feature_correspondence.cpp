@@ -47,7 +47,8 @@ std::vector<std::vector<int>> permissible_assignments(const std::vector<int>& ve
   return assignments;
 }
 
-CorrespondenceChoice choose_correspondence(BlendedDeformer& deformer, const Eigen::MatrixX3d& positions,
+CorrespondenceChoice choose_correspondence(BlendedDeformer& deformer,
+                                           const Eigen::Ref<const Eigen::MatrixX3d>& positions,
                                            const std::vector<std::vector<int>>& assignments, double weight) {
   if (assignments.empty()) throw ArgumentError("choose_correspondence: no assignment to choose from");
   for (const std::vector<int>& assignment : assignments) {

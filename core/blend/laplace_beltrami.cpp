@@ -14,7 +14,8 @@ namespace {
 // Faces this much smaller than the mean have cotangents that swamp the whole operator.
 constexpr double kDegenerateAreaRatio = 1e-12;
 
-double face_area(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces, Eigen::Index f) {
+double face_area(const Eigen::Ref<const Eigen::MatrixX3d>& vertices, const Eigen::Ref<const Eigen::MatrixX3i>& faces,
+                 Eigen::Index f) {
   const Eigen::RowVector3d a = vertices.row(faces(f, 0));
   const Eigen::RowVector3d b = vertices.row(faces(f, 1));
   const Eigen::RowVector3d c = vertices.row(faces(f, 2));
@@ -23,7 +24,8 @@ double face_area(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces
 
 }  // namespace
 
-void check_laplace_beltrami_mesh(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces) {
+void check_laplace_beltrami_mesh(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
+                                 const Eigen::Ref<const Eigen::MatrixX3i>& faces) {
   const int vertex_count = static_cast<int>(vertices.rows());
   if (vertex_count < 3 || faces.rows() == 0) {
     throw ArgumentError("the mesh has " + std::to_string(vertex_count) + " vertices and " +
@@ -52,7 +54,8 @@ void check_laplace_beltrami_mesh(const Eigen::MatrixX3d& vertices, const Eigen::
   }
 }
 
-Eigen::SparseMatrix<double> cotangent_laplacian(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces) {
+Eigen::SparseMatrix<double> cotangent_laplacian(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
+                                                const Eigen::Ref<const Eigen::MatrixX3i>& faces) {
   const int vertex_count = static_cast<int>(vertices.rows());
   check_face_indices(faces, vertex_count);
   std::vector<Eigen::Triplet<double>> entries;
@@ -78,7 +81,8 @@ Eigen::SparseMatrix<double> cotangent_laplacian(const Eigen::MatrixX3d& vertices
   return laplacian;
 }
 
-Eigen::VectorXd lumped_mass(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces) {
+Eigen::VectorXd lumped_mass(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
+                            const Eigen::Ref<const Eigen::MatrixX3i>& faces) {
   check_face_indices(faces, static_cast<int>(vertices.rows()));
   Eigen::VectorXd mass = Eigen::VectorXd::Zero(vertices.rows());
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {

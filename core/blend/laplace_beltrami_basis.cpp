@@ -39,7 +39,8 @@ class ShiftInvertOperator {
 
 }  // namespace
 
-LaplaceBeltramiBasis laplace_beltrami_basis(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces,
+LaplaceBeltramiBasis laplace_beltrami_basis(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
+                                            const Eigen::Ref<const Eigen::MatrixX3i>& faces,
                                             int count) {
   check_laplace_beltrami_mesh(vertices, faces);
   const int vertex_count = static_cast<int>(vertices.rows());

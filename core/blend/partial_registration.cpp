@@ -49,7 +49,7 @@ void check_scan_inputs(const Mesh& scan, const ScanFitOptions& o) {
 }  // namespace
 
 ScanRegistration fit_to_scan(BlendedDeformer& deformer, const Mesh& scan, const std::vector<LinearConstraint>& fixed,
-                             const Eigen::MatrixX3d& fixed_targets, const BlendResult& start,
+                             const Eigen::Ref<const Eigen::MatrixX3d>& fixed_targets, const BlendResult& start,
                              const ScanFitOptions& options) {
   const Clock::time_point begin = Clock::now();
   check_scan_inputs(scan, options);
@@ -148,7 +148,8 @@ ScanRegistration fit_to_scan(BlendedDeformer& deformer, const Mesh& scan, const 
 }
 
 ScanRegistration register_partial_scan(BlendedDeformer& deformer, const Mesh& scan, const std::vector<int>& features,
-                                       const Eigen::MatrixX3d& feature_positions, const ScanFitOptions& options) {
+                                       const Eigen::Ref<const Eigen::MatrixX3d>& feature_positions,
+                                       const ScanFitOptions& options) {
   const Clock::time_point begin = Clock::now();
   check_scan_inputs(scan, options);
   const FeatureConstraints fixed = feature_constraints(deformer, scan, features, feature_positions, options);

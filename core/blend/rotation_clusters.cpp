@@ -16,7 +16,8 @@
 namespace posekit {
 namespace {
 
-double surface_area(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces) {
+double surface_area(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
+                    const Eigen::Ref<const Eigen::MatrixX3i>& faces) {
   double area = 0.0;
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {
     const Eigen::RowVector3d a = vertices.row(faces(f, 0));
@@ -25,7 +26,8 @@ double surface_area(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& fa
   return area;
 }
 
-Eigen::MatrixXd cluster_features(const std::vector<Eigen::MatrixX3d>& examples, const Eigen::MatrixX3i& faces,
+Eigen::MatrixXd cluster_features(const std::vector<Eigen::MatrixX3d>& examples,
+                                 const Eigen::Ref<const Eigen::MatrixX3i>& faces,
                                  double position_weight) {
   const Eigen::MatrixX3d& reference = examples.front();
   const int vertex_count = static_cast<int>(reference.rows());
@@ -53,7 +55,8 @@ Eigen::MatrixXd cluster_features(const std::vector<Eigen::MatrixX3d>& examples, 
 
 }  // namespace
 
-std::vector<int> rotation_clusters(const std::vector<Eigen::MatrixX3d>& examples, const Eigen::MatrixX3i& faces,
+std::vector<int> rotation_clusters(const std::vector<Eigen::MatrixX3d>& examples,
+                                   const Eigen::Ref<const Eigen::MatrixX3i>& faces,
                                    int count, double position_weight) {
   if (examples.empty()) throw ArgumentError("rotation_clusters: no example pose");
   const int vertex_count = static_cast<int>(examples.front().rows());

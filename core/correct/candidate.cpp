@@ -9,12 +9,14 @@
 
 namespace posekit::detail {
 
-Candidate::Candidate(const Eigen::MatrixX3d& pose, const Eigen::MatrixX3i& faces, const std::vector<int>& allowed)
+Candidate::Candidate(const Eigen::Ref<const Eigen::MatrixX3d>& pose, const Eigen::Ref<const Eigen::MatrixX3i>& faces,
+                     const std::vector<int>& allowed)
     : Candidate(pose, faces, allowed, self_intersecting_face_pairs(pose, faces)) {}
 
-Candidate::Candidate(const Eigen::MatrixX3d& pose, const Eigen::MatrixX3i& faces, const std::vector<int>& allowed,
+Candidate::Candidate(const Eigen::Ref<const Eigen::MatrixX3d>& pose, const Eigen::Ref<const Eigen::MatrixX3i>& faces,
+                     const std::vector<int>& allowed,
                      FacePairs known)
-    : tracker_(pose, faces, std::move(known)), faces_(&faces), allowed_(&allowed) {
+    : tracker_(pose, faces, std::move(known)), allowed_(&allowed) {
   new_faces_ = new_intersecting_faces(faces_in_pairs(tracker_.pairs()), allowed);
 }
 
@@ -43,11 +45,13 @@ bool better(const Candidate& a, const Candidate& b, const CorrectionContext& con
   return a_median < b_median;
 }
 
-double median_distance(const Eigen::MatrixX3d& pose, const Eigen::MatrixX3d& target) {
+double median_distance(const Eigen::Ref<const Eigen::MatrixX3d>& pose,
+                       const Eigen::Ref<const Eigen::MatrixX3d>& target) {
   return DriftSummary::of(pose - target).median;
 }
 
-std::vector<int> differing_vertices(const Eigen::MatrixX3d& a, const Eigen::MatrixX3d& b) {
+std::vector<int> differing_vertices(const Eigen::Ref<const Eigen::MatrixX3d>& a,
+                                    const Eigen::Ref<const Eigen::MatrixX3d>& b) {
   std::vector<int> differing;
   for (Eigen::Index v = 0; v < a.rows(); ++v) {
     if (a.row(v) != b.row(v)) differing.push_back(static_cast<int>(v));

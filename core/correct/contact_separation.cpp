@@ -50,7 +50,7 @@ constexpr int kFollowingRings = 2;
 constexpr int kFoldMargin = 6;
 constexpr double kLargestFoldMove = 24.0;  // mean edge lengths
 
-Kernel::Point_3 point_of(const Eigen::MatrixX3d& vertices, int row) {
+Kernel::Point_3 point_of(const Eigen::Ref<const Eigen::MatrixX3d>& vertices, int row) {
   return {vertices(row, 0), vertices(row, 1), vertices(row, 2)};
 }
 
@@ -59,8 +59,9 @@ Kernel::Point_3 point_of(const Eigen::MatrixX3d& vertices, int row) {
 // vertex lies in another part where its winding number differs by more than a half from its
 // winding number in `reference`: what the reference already has (its own parts passing through
 // each other, folds that turn a patch inside out) is not a contact to separate.
-Eigen::MatrixX3d contact_pushes(const Eigen::MatrixX3d& pose, const Eigen::MatrixX3d& reference,
-                                const Eigen::MatrixX3i& faces,
+Eigen::MatrixX3d contact_pushes(const Eigen::Ref<const Eigen::MatrixX3d>& pose,
+                                const Eigen::Ref<const Eigen::MatrixX3d>& reference,
+                                const Eigen::Ref<const Eigen::MatrixX3i>& faces,
                                 const std::vector<int>& intersecting,
                                 const std::vector<std::pair<int, int>>& pairs, const AdjacencyLists& neighbours,
                                 const AdjacencyLists& faces_of_vertex, double clearance, std::vector<char>& pushed) {
@@ -227,7 +228,7 @@ class ContactPushStage final : public RepairStage {
 }  // namespace
 
 SeparationOutcome separate_contacts(const CorrectionContext& context, Candidate start) {
-  const Eigen::MatrixX3i& faces = context.faces;
+  const Eigen::Ref<const Eigen::MatrixX3i>& faces = context.faces;
   const AdjacencyLists& neighbours = context.neighbours;
   const AdjacencyLists faces_of_vertex = vertex_faces(faces, context.vertex_count());
   const Eigen::MatrixX3d rest = start.pose();  // the shape the surroundings keep

@@ -43,7 +43,7 @@ void check_options(const CorrectionOptions& options) {
   validate_rk45_step_control(options.integration);
 }
 
-void check_pose(const Eigen::MatrixX3d& pose, const char* name) {
+void check_pose(const Eigen::Ref<const Eigen::MatrixX3d>& pose, const char* name) {
   if (pose.rows() == 0) throw ArgumentError(std::string(name) + " has no vertices");
   for (Eigen::Index v = 0; v < pose.rows(); ++v) {
     if (!pose.row(v).allFinite()) {
@@ -52,8 +52,10 @@ void check_pose(const Eigen::MatrixX3d& pose, const char* name) {
   }
 }
 
-ResultReport measure_result(const Eigen::MatrixX3d& result, const Eigen::MatrixX3d& reference,
-                            const Eigen::MatrixX3d& target, const Eigen::MatrixX3i& faces,
+ResultReport measure_result(const Eigen::Ref<const Eigen::MatrixX3d>& result,
+                            const Eigen::Ref<const Eigen::MatrixX3d>& reference,
+                            const Eigen::Ref<const Eigen::MatrixX3d>& target,
+                            const Eigen::Ref<const Eigen::MatrixX3i>& faces,
                             const CorrectionContext& context) {
   ResultReport out;
   out.bounding_box_diagonal = bounding_box_diagonal(reference);
@@ -87,8 +89,10 @@ ResultReport measure_result(const Eigen::MatrixX3d& result, const Eigen::MatrixX
 
 }  // namespace
 
-CorrectionContext make_context(const Eigen::MatrixX3d& reference, const Eigen::MatrixX3d& target,
-                               const Eigen::MatrixX3i& faces, Device& device, const CorrectionOptions& options,
+CorrectionContext make_context(const Eigen::Ref<const Eigen::MatrixX3d>& reference,
+                               const Eigen::Ref<const Eigen::MatrixX3d>& target,
+                               const Eigen::Ref<const Eigen::MatrixX3i>& faces, Device& device,
+                               const CorrectionOptions& options,
                                CorrectionScope scope, const CorrectionProgress& progress) {
   CorrectionContext context{reference, target,  faces, device, options, scope, {}, {}, {}, {}, 0,
                             0.0,       StretchMeasure(reference, target, faces), progress, nullptr, {}};
@@ -102,8 +106,10 @@ CorrectionContext make_context(const Eigen::MatrixX3d& reference, const Eigen::M
   return context;
 }
 
-Eigen::MatrixX3d correct_in_scope(const Eigen::MatrixX3d& reference, const Eigen::MatrixX3d& target,
-                                  const Eigen::MatrixX3i& faces, Device& device, const CorrectionOptions& options,
+Eigen::MatrixX3d correct_in_scope(const Eigen::Ref<const Eigen::MatrixX3d>& reference,
+                                  const Eigen::Ref<const Eigen::MatrixX3d>& target,
+                                  const Eigen::Ref<const Eigen::MatrixX3i>& faces, Device& device,
+                                  const CorrectionOptions& options,
                                   CorrectionScope scope, CorrectionReport* report_out,
                                   const CorrectionProgress& progress, const std::vector<int>* allowed) {
   const auto start = std::chrono::steady_clock::now();
@@ -157,7 +163,7 @@ Eigen::MatrixX3d correct_in_scope(const Eigen::MatrixX3d& reference, const Eigen
 
 }  // namespace detail
 
-DriftSummary DriftSummary::of(const Eigen::MatrixX3d& differences) {
+DriftSummary DriftSummary::of(const Eigen::Ref<const Eigen::MatrixX3d>& differences) {
   DriftSummary summary;
   if (differences.rows() == 0) return summary;
   Eigen::VectorXd distances = differences.rowwise().norm();
@@ -193,7 +199,8 @@ const StageReport* CorrectionReport::stage(const std::string& name) const {
 }
 
 Eigen::MatrixX3d correct_pose(const Eigen::Ref<const Eigen::MatrixX3d>& reference,
-                              const Eigen::Ref<const Eigen::MatrixX3d>& target, const Eigen::MatrixX3i& faces,
+                              const Eigen::Ref<const Eigen::MatrixX3d>& target,
+                              const Eigen::Ref<const Eigen::MatrixX3i>& faces,
                               Device& device, const CorrectionOptions& options, CorrectionReport* report,
                               const CorrectionProgress& progress) {
   return detail::correct_in_scope(reference, target, faces, device, options, detail::CorrectionScope::whole_pose,

@@ -36,10 +36,11 @@ struct FieldOutcome {
   PathLines paths;              ///< the path lines every vertex took
 };
 
+/// Holds views of the poses and faces it was made from, which must outlive it.
 struct CorrectionContext {
-  const Eigen::MatrixX3d& reference;  ///< unit-sphere frame
-  const Eigen::MatrixX3d& target;     ///< unit-sphere frame
-  const Eigen::MatrixX3i& faces;
+  Eigen::Ref<const Eigen::MatrixX3d> reference;  ///< unit-sphere frame
+  Eigen::Ref<const Eigen::MatrixX3d> target;     ///< unit-sphere frame
+  Eigen::Ref<const Eigen::MatrixX3i> faces;
   Device& device;
   const CorrectionOptions& options;
   CorrectionScope scope;
@@ -61,8 +62,10 @@ struct CorrectionContext {
 };
 
 /// Builds the context: adjacency, the two poses' intersecting pairs and the diagonal.
-CorrectionContext make_context(const Eigen::MatrixX3d& reference, const Eigen::MatrixX3d& target,
-                               const Eigen::MatrixX3i& faces, Device& device, const CorrectionOptions& options,
+CorrectionContext make_context(const Eigen::Ref<const Eigen::MatrixX3d>& reference,
+                               const Eigen::Ref<const Eigen::MatrixX3d>& target,
+                               const Eigen::Ref<const Eigen::MatrixX3i>& faces, Device& device,
+                               const CorrectionOptions& options,
                                CorrectionScope scope, const CorrectionProgress& progress);
 
 }  // namespace posekit::detail

@@ -44,7 +44,8 @@ constexpr Eigen::Index kFewestConstraints = 20;
 // The root mean square distance a vertex of the region travels from the reference to the target
 // (unit-sphere frame): with time weighted so, a typical trajectory climbs about as much in time as
 // it moves in space. docs/correct.md has the measurements behind it.
-double automatic_time_scale(const Eigen::MatrixX3d& reference, const Eigen::MatrixX3d& target,
+double automatic_time_scale(const Eigen::Ref<const Eigen::MatrixX3d>& reference,
+                            const Eigen::Ref<const Eigen::MatrixX3d>& target,
                             const std::vector<int>& vertices) {
   double sum = 0.0;
   for (int v : vertices) sum += (target.row(v) - reference.row(v)).squaredNorm();
@@ -69,7 +70,8 @@ std::vector<Eigen::MatrixX3d> tested_poses(const std::vector<Eigen::MatrixX3d>& 
 
 // Each tested pose's intersecting pairs; the two ends are known already. The poses are tested side
 // by side: each test's box search runs on one thread.
-std::vector<FacePairs> intersecting_pairs(const std::vector<Eigen::MatrixX3d>& poses, const Eigen::MatrixX3i& faces,
+std::vector<FacePairs> intersecting_pairs(const std::vector<Eigen::MatrixX3d>& poses,
+                                          const Eigen::Ref<const Eigen::MatrixX3i>& faces,
                                           const FacePairs& first, const FacePairs& last) {
   std::vector<FacePairs> pairs(poses.size());
   pairs.front() = first;
@@ -160,7 +162,7 @@ RegionField fit_region(const std::vector<int>& region, const VertexClassificatio
   start = Clock::now();
   std::vector<int> region_row(classification.constrained.size(), -1);
   for (size_t i = 0; i < region.size(); ++i) region_row[static_cast<size_t>(region[i])] = static_cast<int>(i);
-  const auto drift_of = [&](const Eigen::MatrixX3d& ends) {
+  const auto drift_of = [&](const Eigen::Ref<const Eigen::MatrixX3d>& ends) {
     Eigen::MatrixX3d drift(static_cast<Eigen::Index>(constraints.vertices.size()), 3);
     for (size_t k = 0; k < constraints.vertices.size(); ++k) {
       const int v = constraints.vertices[k];
@@ -270,7 +272,9 @@ class FieldStage final : public RepairStage {
       settings.keep_rings = options.reproduction_rings;
       settings.blend_rings = options.blend_rings;
       settings.attempts = kReproductionAttempts;
-      const FaceTest new_faces = [&](const Eigen::MatrixX3d& pose) { return integrated_candidate.new_faces_if(pose); };
+      const FaceTest new_faces = [&](const Eigen::Ref<const Eigen::MatrixX3d>& pose) {
+        return integrated_candidate.new_faces_if(pose);
+      };
       Reproduction reproduction =
           reproduce_target(integrated, context.target, classification.near_intersections, context.faces,
                            context.neighbours, settings, new_faces, integrated_candidate.new_faces());

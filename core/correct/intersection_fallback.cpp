@@ -29,8 +29,9 @@ bool is_set(const Flags& flags, int vertex) { return flags[static_cast<size_t>(v
 
 // Adds the vertices farther than `threshold` from the target that connect to the flagged ones
 // through such vertices: a part dragged along by an obstacle.
-void grow_through_deviation(Flags& flags, const AdjacencyLists& neighbours, const Eigen::MatrixX3d& result,
-                            const Eigen::MatrixX3d& target, double threshold) {
+void grow_through_deviation(Flags& flags, const AdjacencyLists& neighbours,
+                            const Eigen::Ref<const Eigen::MatrixX3d>& result,
+                            const Eigen::Ref<const Eigen::MatrixX3d>& target, double threshold) {
   std::vector<int> stack;
   for (int v = 0; v < static_cast<int>(flags.size()); ++v) {
     if (is_set(flags, v)) stack.push_back(v);
@@ -83,7 +84,7 @@ class FallbackStage final : public RepairStage {
 
 FallbackOutcome restore_target_regions(Candidate& candidate, const CorrectionContext& context,
                                        const std::vector<char>& in_transit, double deviation_threshold) {
-  const Eigen::MatrixX3d& target = context.target;
+  const Eigen::Ref<const Eigen::MatrixX3d>& target = context.target;
   const AdjacencyLists& neighbours = context.neighbours;
   const auto vertex_count = static_cast<double>(context.vertex_count());
   FallbackOutcome outcome;
@@ -110,7 +111,8 @@ FallbackOutcome restore_target_regions(Candidate& candidate, const CorrectionCon
       regions.push_back(within_rings(component, neighbours, 1));
       if (count(regions.back()) > kLargestSmoothedRegion) regions.pop_back();
     }
-    const Eigen::MatrixX3d no_shape = Eigen::MatrixX3d::Zero(result.rows(), 3);
+    const Eigen::MatrixX3d no_shape_matrix = Eigen::MatrixX3d::Zero(result.rows(), 3);
+    const Eigen::Ref<const Eigen::MatrixX3d> no_shape = no_shape_matrix;
 
     std::optional<Probe> best;
     std::size_t best_region = 0;

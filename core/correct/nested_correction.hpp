@@ -14,8 +14,10 @@ namespace posekit::detail {
 /// of the whole pose and count only in CorrectionScope::whole_pose. `allowed` (sorted), when given,
 /// replaces the reference's intersecting faces as those that may intersect: a leg that starts from
 /// a corrected pose still owes the whole pose's reference what that pose left.
-Eigen::MatrixX3d correct_in_scope(const Eigen::MatrixX3d& reference, const Eigen::MatrixX3d& target,
-                                  const Eigen::MatrixX3i& faces, Device& device, const CorrectionOptions& options,
+Eigen::MatrixX3d correct_in_scope(const Eigen::Ref<const Eigen::MatrixX3d>& reference,
+                                  const Eigen::Ref<const Eigen::MatrixX3d>& target,
+                                  const Eigen::Ref<const Eigen::MatrixX3i>& faces, Device& device,
+                                  const CorrectionOptions& options,
                                   CorrectionScope scope, CorrectionReport* report = nullptr,
                                   const CorrectionProgress& progress = {}, const std::vector<int>* allowed = nullptr);
 

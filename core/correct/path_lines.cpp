@@ -5,7 +5,8 @@
 
 namespace posekit::detail {
 
-PathLines::PathLines(const Eigen::MatrixX3d& reference, std::shared_ptr<const VertexTrajectories> trajectories,
+PathLines::PathLines(const Eigen::Ref<const Eigen::MatrixX3d>& reference,
+                     std::shared_ptr<const VertexTrajectories> trajectories,
                      std::vector<TimedField> fields, std::vector<int> field_of_vertex, Device& device,
                      Rk45StepControl integration)
     : reference_(reference),

@@ -26,7 +26,7 @@ class PathLines {
   PathLines() = default;
   /// `reference` (#V by 3) starts every path; vertex v moves through fields[field_of_vertex[v]], or
   /// along `trajectories` where that is -1. `device` must outlive the object.
-  PathLines(const Eigen::MatrixX3d& reference, std::shared_ptr<const VertexTrajectories> trajectories,
+  PathLines(const Eigen::Ref<const Eigen::MatrixX3d>& reference, std::shared_ptr<const VertexTrajectories> trajectories,
             std::vector<TimedField> fields, std::vector<int> field_of_vertex, Device& device, Rk45StepControl integration);
 
   /// Positions of `vertices` at times k / segments of the motion, k = 0 .. segments: element k is

@@ -35,8 +35,9 @@ struct PoissonInterpolator::State {
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
 };
 
-PoissonInterpolator::PoissonInterpolator(const Eigen::MatrixX3d& source, const Eigen::MatrixX3d& target,
-                                         const Eigen::MatrixX3i& faces)
+PoissonInterpolator::PoissonInterpolator(const Eigen::Ref<const Eigen::MatrixX3d>& source,
+                                         const Eigen::Ref<const Eigen::MatrixX3d>& target,
+                                         const Eigen::Ref<const Eigen::MatrixX3i>& faces)
     : state_(std::make_unique<State>()) {
   if (source.rows() != target.rows()) {
     throw ArgumentError("PoissonInterpolator: source has " + std::to_string(source.rows()) +

@@ -28,7 +28,7 @@ constexpr int kMinimumMaxCenters = kRbfPolynomialTerms + 2;
 // center there would repeat a row of the system.
 constexpr double kCoincidentFraction = 1e-9;
 
-void validate(const Points4& positions, const Eigen::MatrixX3d& values,
+void validate(const Points4& positions, const Eigen::Ref<const Eigen::MatrixX3d>& values,
               const RbfFitOptions& options) {
   if (options.centers_per_round < 1) {
     throw ArgumentError("RbfFitOptions::centers_per_round must be >= 1 (got " +
@@ -80,7 +80,8 @@ Points4 rows_of(const Points4& points, const std::vector<Index>& indices) {
   return selected;
 }
 
-Eigen::MatrixX3d center_values(const Eigen::MatrixX3d& values, const std::vector<Index>& center_rows) {
+Eigen::MatrixX3d center_values(const Eigen::Ref<const Eigen::MatrixX3d>& values,
+                               const std::vector<Index>& center_rows) {
   Eigen::MatrixX3d selected(static_cast<Index>(center_rows.size()), 3);
   for (std::size_t k = 0; k < center_rows.size(); ++k) selected.row(static_cast<Index>(k)) = values.row(center_rows[k]);
   return selected;
@@ -88,7 +89,7 @@ Eigen::MatrixX3d center_values(const Eigen::MatrixX3d& values, const std::vector
 
 }  // namespace
 
-RbfField fit_rbf_field(Device& device, const Points4& positions, const Eigen::MatrixX3d& values,
+RbfField fit_rbf_field(Device& device, const Points4& positions, const Eigen::Ref<const Eigen::MatrixX3d>& values,
                        const RbfFitOptions& options, RbfFitReport* report) {
   RbfFit fit(device, positions, values, options);
   if (report != nullptr) *report = fit.report();
@@ -99,7 +100,7 @@ RbfFit::~RbfFit() = default;
 RbfFit::RbfFit(RbfFit&&) noexcept = default;
 RbfFit& RbfFit::operator=(RbfFit&&) noexcept = default;
 
-RbfField RbfFit::refit(const Eigen::MatrixX3d& values) const {
+RbfField RbfFit::refit(const Eigen::Ref<const Eigen::MatrixX3d>& values) const {
   if (values.rows() != constraint_count_) {
     throw ArgumentError("RbfFit::refit: values has " + std::to_string(values.rows()) + " rows but the fit has " +
                         std::to_string(constraint_count_) + " constraints");
@@ -107,7 +108,7 @@ RbfField RbfFit::refit(const Eigen::MatrixX3d& values) const {
   return system_->solve(center_values(values, center_rows_));
 }
 
-RbfFit::RbfFit(Device& device, const Points4& positions, const Eigen::MatrixX3d& values,
+RbfFit::RbfFit(Device& device, const Points4& positions, const Eigen::Ref<const Eigen::MatrixX3d>& values,
                const RbfFitOptions& options) {
   validate(positions, values, options);
   constraint_count_ = positions.rows();

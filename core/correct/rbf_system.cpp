@@ -316,7 +316,7 @@ double RbfSystem::refactorize_full(const MatrixXd& block) {
   return smallest_pivot / largest;
 }
 
-RbfField RbfSystem::solve(const Eigen::MatrixX3d& center_values) const {
+RbfField RbfSystem::solve(const Eigen::Ref<const Eigen::MatrixX3d>& center_values) const {
   const Index count = centers_.rows();
   if (center_values.rows() != count) {
     throw ArgumentError("RbfSystem::solve: " + std::to_string(center_values.rows()) +

@@ -83,7 +83,7 @@ class RbfSystem {
 
   /// The field interpolating `center_values` (#C by 3, one row per center in insertion order).
   /// Throws Error when the solution is not finite.
-  RbfField solve(const Eigen::MatrixX3d& center_values) const;
+  RbfField solve(const Eigen::Ref<const Eigen::MatrixX3d>& center_values) const;
 
   /// #C by 4 centers in insertion order.
   const Points4& centers() const { return centers_; }

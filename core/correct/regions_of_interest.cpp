@@ -9,7 +9,8 @@ namespace posekit::detail {
 
 std::vector<std::vector<int>> regions_of_interest(const VertexClassification& classification,
                                                   const std::vector<FacePairs>& tested_pairs,
-                                                  const Eigen::MatrixX3i& faces, const AdjacencyLists& neighbours,
+                                                  const Eigen::Ref<const Eigen::MatrixX3i>& faces,
+                                                  const AdjacencyLists& neighbours,
                                                   int collar_rings) {
   std::vector<char> unconstrained(classification.constrained.size(), 0);
   for (size_t v = 0; v < unconstrained.size(); ++v) unconstrained[v] = classification.constrained[v] ? 0 : 1;

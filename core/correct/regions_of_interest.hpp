@@ -21,7 +21,8 @@ namespace posekit::detail {
 /// Each region's vertices ascend; regions are largest first.
 std::vector<std::vector<int>> regions_of_interest(const VertexClassification& classification,
                                                   const std::vector<FacePairs>& tested_pairs,
-                                                  const Eigen::MatrixX3i& faces, const AdjacencyLists& neighbours,
+                                                  const Eigen::Ref<const Eigen::MatrixX3i>& faces,
+                                                  const AdjacencyLists& neighbours,
                                                   int collar_rings);
 
 /// One region holding every vertex, for the whole-mesh method.

@@ -25,7 +25,8 @@ std::optional<Candidate> sweep_proposal(Candidate swept, const SweepOutcome& out
   return swept;
 }
 
-Candidate whole_pose_proposal(const Candidate& current, const Eigen::MatrixX3d& pose, StageReport& report) {
+Candidate whole_pose_proposal(const Candidate& current, const Eigen::Ref<const Eigen::MatrixX3d>& pose,
+                              StageReport& report) {
   Probe probe = current.probe(pose);
   report.regions = 1;
   report.vertices = static_cast<int>(differing_vertices(probe.pose, current.pose()).size());

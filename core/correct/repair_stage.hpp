@@ -49,7 +49,8 @@ std::optional<Candidate> sweep_proposal(Candidate swept, const SweepOutcome& out
 
 /// What a stage that corrects the whole pose anew proposes: `current` moved to `pose`, reported as
 /// one region of the vertices that differ.
-Candidate whole_pose_proposal(const Candidate& current, const Eigen::MatrixX3d& pose, StageReport& report);
+Candidate whole_pose_proposal(const Candidate& current, const Eigen::Ref<const Eigen::MatrixX3d>& pose,
+                              StageReport& report);
 
 // The stages, each defined in the file of its method.
 std::unique_ptr<RepairStage> make_field_stage();                // field_correction.cpp

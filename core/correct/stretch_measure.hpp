@@ -18,19 +18,21 @@ constexpr double kStronglyStretchedFactor = 3.0;
 
 class StretchMeasure {
  public:
-  /// `reference` and `target` (#V by 3 of `faces`) must outlive the measure.
-  StretchMeasure(const Eigen::MatrixX3d& reference, const Eigen::MatrixX3d& target, const Eigen::MatrixX3i& faces);
+  /// Keeps views of `reference`, `target` (#V by 3) and `faces`, which must outlive the measure.
+  StretchMeasure(const Eigen::Ref<const Eigen::MatrixX3d>& reference, const Eigen::Ref<const Eigen::MatrixX3d>& target,
+                 const Eigen::Ref<const Eigen::MatrixX3i>& faces);
   /// Per face of `pose`, the edge_stretch against the reference and the target.
-  Eigen::VectorXd per_face(const Eigen::MatrixX3d& pose) const;
+  Eigen::VectorXd per_face(const Eigen::Ref<const Eigen::MatrixX3d>& pose) const;
   /// Faces stretched more than `factor`, ascending.
-  std::vector<int> stretched_faces(const Eigen::MatrixX3d& pose, double factor = kStretchedFactor) const;
+  std::vector<int> stretched_faces(const Eigen::Ref<const Eigen::MatrixX3d>& pose,
+                                   double factor = kStretchedFactor) const;
   /// How many faces are stretched more than `factor`.
-  int count(const Eigen::MatrixX3d& pose, double factor = kStretchedFactor) const;
+  int count(const Eigen::Ref<const Eigen::MatrixX3d>& pose, double factor = kStretchedFactor) const;
 
  private:
-  const Eigen::MatrixX3d* reference_;
-  const Eigen::MatrixX3d* target_;
-  const Eigen::MatrixX3i* faces_;
+  Eigen::Ref<const Eigen::MatrixX3d> reference_;
+  Eigen::Ref<const Eigen::MatrixX3d> target_;
+  Eigen::Ref<const Eigen::MatrixX3i> faces_;
   double shortest_ = 0;
 };
 

@@ -42,7 +42,8 @@ Eigen::VectorXd correction_weights(const std::vector<char>& corrected, const Adj
   return weights;
 }
 
-Eigen::MatrixX3d blend_towards_target(const Eigen::MatrixX3d& integrated, const Eigen::MatrixX3d& target,
+Eigen::MatrixX3d blend_towards_target(const Eigen::Ref<const Eigen::MatrixX3d>& integrated,
+                                      const Eigen::Ref<const Eigen::MatrixX3d>& target,
                                       const Eigen::VectorXd& weights) {
   if (integrated.rows() != target.rows() || weights.size() != target.rows()) {
     throw ArgumentError("blend of poses and weights of different sizes");
@@ -52,7 +53,8 @@ Eigen::MatrixX3d blend_towards_target(const Eigen::MatrixX3d& integrated, const 
   return blended + target;
 }
 
-Eigen::MatrixX3d with_shape_of(const Eigen::MatrixX3d& pose, const Eigen::MatrixX3d& shape,
+Eigen::MatrixX3d with_shape_of(const Eigen::Ref<const Eigen::MatrixX3d>& pose,
+                               const Eigen::Ref<const Eigen::MatrixX3d>& shape,
                                const std::vector<char>& region, const AdjacencyLists& neighbours) {
   std::vector<int> unknown_of(region.size(), -1);
   std::vector<int> vertices;
@@ -89,8 +91,9 @@ Eigen::MatrixX3d with_shape_of(const Eigen::MatrixX3d& pose, const Eigen::Matrix
   return reshaped;
 }
 
-Reproduction reproduce_target(const Eigen::MatrixX3d& result, const Eigen::MatrixX3d& target, std::vector<char> kept,
-                              const Eigen::MatrixX3i& faces, const AdjacencyLists& neighbours,
+Reproduction reproduce_target(const Eigen::Ref<const Eigen::MatrixX3d>& result,
+                              const Eigen::Ref<const Eigen::MatrixX3d>& target, std::vector<char> kept,
+                              const Eigen::Ref<const Eigen::MatrixX3i>& faces, const AdjacencyLists& neighbours,
                               const ReproductionSettings& settings, const FaceTest& new_faces,
                               const std::vector<int>& allowed) {
   for (int attempt = 0; attempt < settings.attempts; ++attempt) {
@@ -143,7 +146,9 @@ class FinalReproductionStage final : public RepairStage {
     settings.blend_rings = context.options.blend_rings;
     settings.widening_rings = 1;
     settings.attempts = kFinalReproductionAttempts;
-    const FaceTest new_faces = [&](const Eigen::MatrixX3d& pose) { return current.new_faces_if(pose); };
+    const FaceTest new_faces = [&](const Eigen::Ref<const Eigen::MatrixX3d>& pose) {
+      return current.new_faces_if(pose);
+    };
     Reproduction reproduction = reproduce_target(current.pose(), context.target, kept, context.faces,
                                                  context.neighbours, settings, new_faces, current.new_faces());
     if (!reproduction.pose) return std::nullopt;

@@ -23,14 +23,16 @@ Eigen::VectorXd correction_weights(const std::vector<char>& corrected, const Adj
                                    int keep_rings, int blend_rings);
 
 /// target + weights * (integrated - target), row by row (#V by 3 each, #V weights).
-Eigen::MatrixX3d blend_towards_target(const Eigen::MatrixX3d& integrated, const Eigen::MatrixX3d& target,
+Eigen::MatrixX3d blend_towards_target(const Eigen::Ref<const Eigen::MatrixX3d>& integrated,
+                                      const Eigen::Ref<const Eigen::MatrixX3d>& target,
                                       const Eigen::VectorXd& weights);
 
 /// `pose` (#V by 3) with the flagged `region` (one flag per vertex) given the shape of `shape` (#V by
 /// 3), displaced by the harmonic interpolation of the offsets pose - shape at the vertices around
 /// it: the region keeps the shape's detail and joins its surroundings smoothly, wherever they are.
 /// A region that is a whole closed component (no surroundings) takes the shape unmoved.
-Eigen::MatrixX3d with_shape_of(const Eigen::MatrixX3d& pose, const Eigen::MatrixX3d& shape,
+Eigen::MatrixX3d with_shape_of(const Eigen::Ref<const Eigen::MatrixX3d>& pose,
+                               const Eigen::Ref<const Eigen::MatrixX3d>& shape,
                                const std::vector<char>& region, const AdjacencyLists& neighbours);
 
 /// The faces of a pose that intersect and are not the reference's (sorted).
@@ -52,8 +54,9 @@ struct Reproduction {
 /// and where the blend makes faces intersect that are not in `allowed` (sorted; `new_faces` tells
 /// which intersect), keeps the result around those faces too and blends again, up to
 /// `settings.attempts` times.
-Reproduction reproduce_target(const Eigen::MatrixX3d& result, const Eigen::MatrixX3d& target, std::vector<char> kept,
-                              const Eigen::MatrixX3i& faces, const AdjacencyLists& neighbours,
+Reproduction reproduce_target(const Eigen::Ref<const Eigen::MatrixX3d>& result,
+                              const Eigen::Ref<const Eigen::MatrixX3d>& target, std::vector<char> kept,
+                              const Eigen::Ref<const Eigen::MatrixX3i>& faces, const AdjacencyLists& neighbours,
                               const ReproductionSettings& settings, const FaceTest& new_faces,
                               const std::vector<int>& allowed);
 

@@ -23,7 +23,8 @@ constexpr double kLargestRegionFraction = 0.1;
 // A fit of the region's earlier shape onto its surroundings needs points that span a plane.
 constexpr int kFewestAnchors = 3;
 
-bool touches_within(const std::vector<int>& face_list, const Eigen::MatrixX3i& faces, const std::vector<int>& distance,
+bool touches_within(const std::vector<int>& face_list, const Eigen::Ref<const Eigen::MatrixX3i>& faces,
+                    const std::vector<int>& distance,
                     int within) {
   for (int f : face_list) {
     for (int c = 0; c < 3; ++c) {

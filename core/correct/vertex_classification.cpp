@@ -6,7 +6,8 @@
 
 namespace posekit::detail {
 
-VertexClassification classify_vertices(const std::vector<FacePairs>& pairs_per_pose, const Eigen::MatrixX3i& faces,
+VertexClassification classify_vertices(const std::vector<FacePairs>& pairs_per_pose,
+                                       const Eigen::Ref<const Eigen::MatrixX3i>& faces,
                                        const AdjacencyLists& neighbours, int rings,
                                        const std::vector<int>& user_excluded) {
   if (pairs_per_pose.size() < 2) throw ArgumentError("classification needs the reference and the target");

@@ -31,7 +31,8 @@ struct VertexClassification {
 /// grown by `rings` one-rings, and the `user_excluded` vertices; then gives the vertices of faces
 /// already intersecting in the reference back to the constraints (those intersections are
 /// reproduced, not repaired). `faces` is #F by 3 over `neighbours.item_count()` vertices.
-VertexClassification classify_vertices(const std::vector<FacePairs>& pairs_per_pose, const Eigen::MatrixX3i& faces,
+VertexClassification classify_vertices(const std::vector<FacePairs>& pairs_per_pose,
+                                       const Eigen::Ref<const Eigen::MatrixX3i>& faces,
                                        const AdjacencyLists& neighbours, int rings,
                                        const std::vector<int>& user_excluded);
 

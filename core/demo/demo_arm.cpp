@@ -133,7 +133,8 @@ double second_bone_weight(double x, const DemoArmOptions& options) {
 }
 
 // Linear blend skinning: the first bone stays put, the second turns about +z through the joint.
-Eigen::MatrixX3d bent_vertices(const Eigen::MatrixX3d& rest, double angle_degrees, const DemoArmOptions& options) {
+Eigen::MatrixX3d bent_vertices(const Eigen::Ref<const Eigen::MatrixX3d>& rest, double angle_degrees,
+                               const DemoArmOptions& options) {
   const double angle = angle_degrees * kPi / 180.0;
   const double c = std::cos(angle);
   const double s = std::sin(angle);

@@ -21,10 +21,12 @@ constexpr double kEnergyTolerance = 1e-5;
 
 }  // namespace
 
-std::optional<Eigen::MatrixX3d> as_rigid_as_possible(const Eigen::MatrixX3d& rest, const Eigen::MatrixX3d& current,
-                                                     const Eigen::MatrixX3i& faces, const std::vector<char>& free,
+std::optional<Eigen::MatrixX3d> as_rigid_as_possible(const Eigen::Ref<const Eigen::MatrixX3d>& rest,
+                                                     const Eigen::Ref<const Eigen::MatrixX3d>& current,
+                                                     const Eigen::Ref<const Eigen::MatrixX3i>& faces,
+                                                     const std::vector<char>& free,
                                                      const std::vector<char>& handles,
-                                                     const Eigen::MatrixX3d& handle_positions,
+                                                     const Eigen::Ref<const Eigen::MatrixX3d>& handle_positions,
                                                      const AdjacencyLists& neighbours) {
   std::vector<char> moving(free.size());
   for (size_t v = 0; v < free.size(); ++v) moving[v] = free[v] != 0 || handles[v] != 0 ? 1 : 0;
@@ -44,7 +46,7 @@ std::optional<Eigen::MatrixX3d> as_rigid_as_possible(const Eigen::MatrixX3d& res
   }
 
   Deformation deformation(mesh);
-  const auto hold = [&](MeshVertex vertex, const Eigen::MatrixX3d& positions, int row) {
+  const auto hold = [&](MeshVertex vertex, const Eigen::Ref<const Eigen::MatrixX3d>& positions, int row) {
     deformation.insert_control_vertex(vertex);
     deformation.set_target_position(vertex, Kernel::Point_3(positions(row, 0), positions(row, 1), positions(row, 2)));
   };

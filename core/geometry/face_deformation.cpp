@@ -23,8 +23,9 @@ Eigen::Matrix3d face_basis(const Eigen::Vector3d& a, const Eigen::Vector3d& b, c
   return basis;
 }
 
-std::vector<Eigen::Matrix3d> face_deformation_gradients(const Eigen::MatrixX3d& source, const Eigen::MatrixX3d& target,
-                                                        const Eigen::MatrixX3i& faces) {
+std::vector<Eigen::Matrix3d> face_deformation_gradients(const Eigen::Ref<const Eigen::MatrixX3d>& source,
+                                                        const Eigen::Ref<const Eigen::MatrixX3d>& target,
+                                                        const Eigen::Ref<const Eigen::MatrixX3i>& faces) {
   if (source.rows() != target.rows()) {
     throw ArgumentError("face_deformation_gradients: source has " + std::to_string(source.rows()) +
                         " vertices but target has " + std::to_string(target.rows()));

@@ -16,7 +16,7 @@ constexpr double kUnambiguousAngle = 0.9 * kPi;
 // Faces rotated by less than kUnambiguousAngle keep their principal logarithm; the others are reached
 // breadth-first from them and take the branch closest to the mean of their already-assigned neighbours.
 std::vector<Eigen::Vector3d> consistent_rotation_logs(const std::vector<Eigen::AngleAxisd>& rotations,
-                                                      const Eigen::MatrixX3i& faces) {
+                                                      const Eigen::Ref<const Eigen::MatrixX3i>& faces) {
   const int face_count = static_cast<int>(faces.rows());
   const EdgeMap edges = edge_map(faces);
   const AdjacencyLists faces_of_edge = edge_faces(edges);

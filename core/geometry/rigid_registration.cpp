@@ -5,7 +5,7 @@
 
 namespace posekit {
 
-Eigen::MatrixX3d RigidTransform::apply(const Eigen::MatrixX3d& points) const {
+Eigen::MatrixX3d RigidTransform::apply(const Eigen::Ref<const Eigen::MatrixX3d>& points) const {
   return (points * rotation.transpose()).rowwise() + translation;
 }
 
@@ -23,7 +23,8 @@ RigidTransform RigidTransform::inverse() const {
   return result;
 }
 
-RigidTransform best_rigid_transform(const Eigen::MatrixX3d& source, const Eigen::MatrixX3d& target) {
+RigidTransform best_rigid_transform(const Eigen::Ref<const Eigen::MatrixX3d>& source,
+                                    const Eigen::Ref<const Eigen::MatrixX3d>& target) {
   if (source.rows() != target.rows()) {
     throw ArgumentError("best_rigid_transform: source has " + std::to_string(source.rows()) + " points but target has " +
                         std::to_string(target.rows()));

@@ -13,6 +13,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <unordered_map>
 
 namespace posekit {
@@ -31,7 +32,8 @@ struct Box {
   double extent() const { return std::max({max[0] - min[0], max[1] - min[1], max[2] - min[2]}); }
 };
 
-Box face_box(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces, int f) {
+Box face_box(const Eigen::Ref<const Eigen::MatrixX3d>& vertices, const Eigen::Ref<const Eigen::MatrixX3i>& faces,
+             int f) {
   Box box;
   for (int axis = 0; axis < 3; ++axis) {
     const double a = vertices(faces(f, 0), axis);
@@ -136,7 +138,7 @@ class Buckets {
 };
 
 // A cell as wide as most faces' boxes, from the corner of the pose's bounding box.
-Buckets buckets_for(const Eigen::MatrixX3d& vertices, const std::vector<Box>& boxes) {
+Buckets buckets_for(const Eigen::Ref<const Eigen::MatrixX3d>& vertices, const std::vector<Box>& boxes) {
   std::vector<double> extents(boxes.size());
   for (size_t f = 0; f < boxes.size(); ++f) extents[f] = boxes[f].extent();
   double cell = 0.0;
@@ -154,12 +156,17 @@ Buckets buckets_for(const Eigen::MatrixX3d& vertices, const std::vector<Box>& bo
 
 }  // namespace
 
-// The pose last tested, its faces' boxes in buckets, and which faces are degenerate.
+// The pose last tested, its faces' boxes in buckets, and which faces are degenerate. The faces are
+// the tracker's own copy, shared by its copies, so that the caller's matrix need not outlive it.
 class SelfIntersectionTracker::Grid {
  public:
-  Grid(const Eigen::MatrixX3d& pose, const Eigen::MatrixX3i& mesh_faces)
+  Grid(const Eigen::Ref<const Eigen::MatrixX3d>& pose, std::shared_ptr<const Eigen::MatrixX3i> mesh_faces_copy)
+      : Grid(pose, mesh_faces_copy, *mesh_faces_copy) {}
+
+  Grid(const Eigen::Ref<const Eigen::MatrixX3d>& pose, std::shared_ptr<const Eigen::MatrixX3i> mesh_faces_copy,
+       const Eigen::MatrixX3i& mesh_faces)
       : vertices(pose),
-        faces(&mesh_faces),
+        faces(std::move(mesh_faces_copy)),
         faces_of_vertex(vertex_faces(mesh_faces, static_cast<int>(pose.rows()))),
         boxes(static_cast<size_t>(mesh_faces.rows())),
         degenerate(static_cast<size_t>(mesh_faces.rows()), 0),
@@ -174,7 +181,7 @@ class SelfIntersectionTracker::Grid {
   }
 
   // Faces with a corner where `changed` differs from the stored pose, ascending.
-  std::vector<int> moved_faces(const Eigen::MatrixX3d& changed) const {
+  std::vector<int> moved_faces(const Eigen::Ref<const Eigen::MatrixX3d>& changed) const {
     std::vector<int> moved;
     for (Eigen::Index v = 0; v < vertices.rows(); ++v) {
       if (changed(v, 0) == vertices(v, 0) && changed(v, 1) == vertices(v, 1) && changed(v, 2) == vertices(v, 2)) continue;
@@ -186,7 +193,7 @@ class SelfIntersectionTracker::Grid {
   }
 
   // The pairs of `changed` that involve a face of `moved` (ascending).
-  FacePairs pairs_of_moved(const Eigen::MatrixX3d& changed, const std::vector<int>& moved) const {
+  FacePairs pairs_of_moved(const Eigen::Ref<const Eigen::MatrixX3d>& changed, const std::vector<int>& moved) const {
     const detail::FacePairTest test(changed, *faces);
     std::vector<Box> moved_boxes(moved.size());
     std::vector<char> moved_degenerate(moved.size(), 0);
@@ -226,22 +233,24 @@ class SelfIntersectionTracker::Grid {
   }
 
   Eigen::MatrixX3d vertices;
-  const Eigen::MatrixX3i* faces;
+  std::shared_ptr<const Eigen::MatrixX3i> faces;
   AdjacencyLists faces_of_vertex;
   std::vector<Box> boxes;
   std::vector<char> degenerate;
   Buckets buckets;
 };
 
-SelfIntersectionTracker::SelfIntersectionTracker(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces)
+SelfIntersectionTracker::SelfIntersectionTracker(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
+                                                 const Eigen::Ref<const Eigen::MatrixX3i>& faces)
     : SelfIntersectionTracker(vertices, faces, self_intersecting_face_pairs(vertices, faces)) {}
 
-SelfIntersectionTracker::SelfIntersectionTracker(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces,
+SelfIntersectionTracker::SelfIntersectionTracker(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
+                                                 const Eigen::Ref<const Eigen::MatrixX3i>& faces,
                                                  FacePairs known_pairs)
     : pairs_(std::move(known_pairs)) {
   check_face_indices(faces, static_cast<int>(vertices.rows()));
   detail::check_finite_vertices(vertices, "SelfIntersectionTracker");
-  grid_ = std::make_unique<Grid>(vertices, faces);
+  grid_ = std::make_unique<Grid>(vertices, std::make_shared<const Eigen::MatrixX3i>(faces));
   sort_unique(pairs_);
 }
 
@@ -259,8 +268,9 @@ SelfIntersectionTracker::SelfIntersectionTracker(SelfIntersectionTracker&&) noex
 SelfIntersectionTracker& SelfIntersectionTracker::operator=(SelfIntersectionTracker&&) noexcept = default;
 
 const Eigen::MatrixX3d& SelfIntersectionTracker::vertices() const { return grid_->vertices; }
+const Eigen::MatrixX3i& SelfIntersectionTracker::faces() const { return *grid_->faces; }
 
-void SelfIntersectionTracker::check_pose(const Eigen::MatrixX3d& changed) const {
+void SelfIntersectionTracker::check_pose(const Eigen::Ref<const Eigen::MatrixX3d>& changed) const {
   if (changed.rows() != grid_->vertices.rows()) {
     throw ArgumentError("SelfIntersectionTracker: a pose of " + std::to_string(changed.rows()) +
                         " vertices for a mesh of " + std::to_string(grid_->vertices.rows()));
@@ -268,7 +278,7 @@ void SelfIntersectionTracker::check_pose(const Eigen::MatrixX3d& changed) const 
   detail::check_finite_vertices(changed, "SelfIntersectionTracker");
 }
 
-FacePairs SelfIntersectionTracker::pairs_if(const Eigen::MatrixX3d& changed) const {
+FacePairs SelfIntersectionTracker::pairs_if(const Eigen::Ref<const Eigen::MatrixX3d>& changed) const {
   check_pose(changed);
   const std::vector<int> moved = grid_->moved_faces(changed);
   if (moved.empty()) return pairs_;
@@ -288,15 +298,16 @@ FacePairs SelfIntersectionTracker::pairs_if(const Eigen::MatrixX3d& changed) con
   return pairs;
 }
 
-void SelfIntersectionTracker::update(const Eigen::MatrixX3d& changed) { update(changed, pairs_if(changed)); }
+void SelfIntersectionTracker::update(const Eigen::Ref<const Eigen::MatrixX3d>& changed) { update(changed,
+    pairs_if(changed)); }
 
-void SelfIntersectionTracker::update(const Eigen::MatrixX3d& changed, FacePairs known) {
+void SelfIntersectionTracker::update(const Eigen::Ref<const Eigen::MatrixX3d>& changed, FacePairs known) {
   check_pose(changed);
   FacePairs pairs = std::move(known);
   sort_unique(pairs);
   const std::vector<int> moved = grid_->moved_faces(changed);
   if (static_cast<double>(moved.size()) > kWholeTestFraction * static_cast<double>(grid_->boxes.size())) {
-    grid_ = std::make_unique<Grid>(changed, *grid_->faces);  // cells sized for the new pose
+    grid_ = std::make_unique<Grid>(changed, grid_->faces);  // cells sized for the new pose
     pairs_ = std::move(pairs);
     return;
   }

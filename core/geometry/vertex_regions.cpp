@@ -29,7 +29,8 @@ std::vector<int> ring_distances(const std::vector<char>& flagged, const Adjacenc
   return distance;
 }
 
-std::vector<char> face_vertices(const std::vector<int>& face_list, const Eigen::MatrixX3i& faces, size_t vertex_count) {
+std::vector<char> face_vertices(const std::vector<int>& face_list, const Eigen::Ref<const Eigen::MatrixX3i>& faces,
+                                size_t vertex_count) {
   std::vector<char> flags(vertex_count, 0);
   for (int f : face_list) {
     for (int c = 0; c < 3; ++c) flags[static_cast<size_t>(faces(f, c))] = 1;
@@ -44,7 +45,7 @@ std::vector<char> within_rings(const std::vector<char>& flagged, const Adjacency
   return flags;
 }
 
-std::vector<char> faces_within(const std::vector<char>& flagged, const Eigen::MatrixX3i& faces) {
+std::vector<char> faces_within(const std::vector<char>& flagged, const Eigen::Ref<const Eigen::MatrixX3i>& faces) {
   std::vector<char> inside(static_cast<size_t>(faces.rows()), 0);
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {
     inside[static_cast<size_t>(f)] = flagged[static_cast<size_t>(faces(f, 0))] != 0 &&
@@ -54,7 +55,8 @@ std::vector<char> faces_within(const std::vector<char>& flagged, const Eigen::Ma
   return inside;
 }
 
-bool touches(const std::vector<char>& flagged, const std::vector<int>& face_list, const Eigen::MatrixX3i& faces) {
+bool touches(const std::vector<char>& flagged, const std::vector<int>& face_list,
+             const Eigen::Ref<const Eigen::MatrixX3i>& faces) {
   for (int f : face_list) {
     for (int c = 0; c < 3; ++c) {
       if (flagged[static_cast<size_t>(faces(f, c))] != 0) return true;
@@ -85,7 +87,7 @@ std::vector<std::vector<int>> connected_sets(const std::vector<char>& flagged, c
 }
 
 std::vector<std::vector<int>> join_intersecting(const std::vector<std::vector<int>>& sets, const FacePairs& pairs,
-                                                const Eigen::MatrixX3i& faces) {
+                                                const Eigen::Ref<const Eigen::MatrixX3i>& faces) {
   int vertex_count = 0;
   for (const std::vector<int>& set : sets) {
     for (int v : set) vertex_count = std::max(vertex_count, v + 1);

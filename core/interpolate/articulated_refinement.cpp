@@ -103,7 +103,7 @@ ArticulatedRefinement::ArticulatedRefinement(const std::vector<const EdgeSpacePa
   if (node_count_ > 0) solver_.analyzePattern(normal_matrix_.matrix());
 }
 
-double ArticulatedRefinement::energy(const Eigen::MatrixX3d& x, const Eigen::VectorXd& lengths,
+double ArticulatedRefinement::energy(const Eigen::Ref<const Eigen::MatrixX3d>& x, const Eigen::VectorXd& lengths,
                                      const Eigen::VectorXd& angles, double bending_weight) const {
   double sum = 0.0;
   for (const Element& element : elements_) {

@@ -35,7 +35,8 @@ class ArticulatedRefinement {
   ArticulatedStats refine(Eigen::MatrixX3d& x, const Eigen::VectorXd& lengths, const Eigen::VectorXd& angles,
                           double bending_weight, int iterations, double tolerance);
 
-  double energy(const Eigen::MatrixX3d& x, const Eigen::VectorXd& lengths, const Eigen::VectorXd& angles,
+  double energy(const Eigen::Ref<const Eigen::MatrixX3d>& x, const Eigen::VectorXd& lengths,
+                const Eigen::VectorXd& angles,
                 double bending_weight) const;
 
  private:

@@ -9,7 +9,8 @@
 
 namespace posekit::interpolation {
 
-EdgeSpacePatch make_edge_space_patch(const std::vector<int>& patch_faces, const Eigen::MatrixX3i& faces,
+EdgeSpacePatch make_edge_space_patch(const std::vector<int>& patch_faces,
+                                     const Eigen::Ref<const Eigen::MatrixX3i>& faces,
                                      int vertex_count, const EdgeMap& edges, const AdjacencyLists& incident_faces,
                                      const std::vector<char>& hinge) {
   EdgeSpacePatch patch;
@@ -80,7 +81,7 @@ EdgeSpacePatch make_edge_space_patch(const std::vector<int>& patch_faces, const 
   return patch;
 }
 
-double hinge_angle(const Hinge& h, const Eigen::MatrixX3d& x) {
+double hinge_angle(const Hinge& h, const Eigen::Ref<const Eigen::MatrixX3d>& x) {
   const Eigen::Vector3d a = x.row(h.a);
   const Eigen::Vector3d b = x.row(h.b);
   const Eigen::Vector3d c = x.row(h.c);
@@ -92,7 +93,7 @@ double hinge_angle(const Hinge& h, const Eigen::MatrixX3d& x) {
   return std::atan2(n1.cross(n2).dot(direction), n1.dot(n2));
 }
 
-Eigen::Matrix<double, 4, 3> hinge_angle_gradient(const Hinge& h, const Eigen::MatrixX3d& x) {
+Eigen::Matrix<double, 4, 3> hinge_angle_gradient(const Hinge& h, const Eigen::Ref<const Eigen::MatrixX3d>& x) {
   const Eigen::Vector3d a = x.row(h.a);
   const Eigen::Vector3d b = x.row(h.b);
   const Eigen::Vector3d c = x.row(h.c);

@@ -41,14 +41,15 @@ struct EdgeSpacePatch {
 
 /// The patch of the ascending mesh faces `patch_faces` of `faces` (#F by 3, `vertex_count` vertices),
 /// with `edges` = edge_map(faces), `incident_faces` = edge_faces(edges) and the #E mesh `hinge` flags.
-EdgeSpacePatch make_edge_space_patch(const std::vector<int>& patch_faces, const Eigen::MatrixX3i& faces,
+EdgeSpacePatch make_edge_space_patch(const std::vector<int>& patch_faces,
+                                     const Eigen::Ref<const Eigen::MatrixX3i>& faces,
                                      int vertex_count, const EdgeMap& edges, const AdjacencyLists& incident_faces,
                                      const std::vector<char>& hinge);
 
 /// Signed dihedral angle of `hinge` (the convention of dihedral_angles) for the local positions `x`.
-double hinge_angle(const Hinge& hinge, const Eigen::MatrixX3d& x);
+double hinge_angle(const Hinge& hinge, const Eigen::Ref<const Eigen::MatrixX3d>& x);
 
 /// Gradient of hinge_angle with respect to the positions of a, b, c and d (rows 0 to 3).
-Eigen::Matrix<double, 4, 3> hinge_angle_gradient(const Hinge& hinge, const Eigen::MatrixX3d& x);
+Eigen::Matrix<double, 4, 3> hinge_angle_gradient(const Hinge& hinge, const Eigen::Ref<const Eigen::MatrixX3d>& x);
 
 }  // namespace posekit::interpolation

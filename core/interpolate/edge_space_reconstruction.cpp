@@ -49,7 +49,8 @@ std::vector<int> connected_piece_starts(const EdgeSpacePatch& patch) {
 
 }  // namespace
 
-EdgeSpaceReconstruction::EdgeSpaceReconstruction(EdgeSpacePatch patch, const Eigen::MatrixX3d& reference,
+EdgeSpaceReconstruction::EdgeSpaceReconstruction(EdgeSpacePatch patch,
+                                                 const Eigen::Ref<const Eigen::MatrixX3d>& reference,
                                                  const PoseDeformations& deformations)
     : patch_(std::move(patch)) {
   const int face_count = patch_.face_count();
@@ -162,7 +163,7 @@ Eigen::MatrixX3d EdgeSpaceReconstruction::gradient_guess(const Eigen::VectorXd& 
   return x;
 }
 
-double EdgeSpaceReconstruction::energy(const Eigen::MatrixX3d& x, const Eigen::VectorXd& lengths,
+double EdgeSpaceReconstruction::energy(const Eigen::Ref<const Eigen::MatrixX3d>& x, const Eigen::VectorXd& lengths,
                                        const Eigen::VectorXd& angles, double bending_weight) const {
   double sum = 0.0;
   for (int e = 0; e < patch_.edge_count(); ++e) {

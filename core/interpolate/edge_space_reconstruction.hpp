@@ -34,7 +34,8 @@ class EdgeSpaceReconstruction {
  public:
   /// Prepares the reconstruction of `patch` of a mesh whose pose 0 is `reference` (#V by 3) and whose
   /// faces deform as `deformations` says from pose 0 to the other poses.
-  EdgeSpaceReconstruction(EdgeSpacePatch patch, const Eigen::MatrixX3d& reference, const PoseDeformations& deformations);
+  EdgeSpaceReconstruction(EdgeSpacePatch patch, const Eigen::Ref<const Eigen::MatrixX3d>& reference,
+                          const PoseDeformations& deformations);
 
   /// Local positions (patch vertices by 3) for target `lengths` (one per patch edge, > 0) and target
   /// `angles` (one per hinge, radians), both interpolated with the K pose `weights`. Not safe to call
@@ -51,7 +52,8 @@ class EdgeSpaceReconstruction {
                              const ReconstructionOptions& options);
 
   /// The energy above at the local positions `x`.
-  double energy(const Eigen::MatrixX3d& x, const Eigen::VectorXd& lengths, const Eigen::VectorXd& angles,
+  double energy(const Eigen::Ref<const Eigen::MatrixX3d>& x, const Eigen::VectorXd& lengths,
+                const Eigen::VectorXd& angles,
                 double bending_weight) const;
 
   const EdgeSpacePatch& patch() const { return patch_; }

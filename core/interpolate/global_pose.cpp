@@ -7,7 +7,7 @@
 namespace posekit::interpolation {
 namespace {
 
-Eigen::MatrixX3d rows_of(const Eigen::MatrixX3d& x, const std::vector<int>& rows) {
+Eigen::MatrixX3d rows_of(const Eigen::Ref<const Eigen::MatrixX3d>& x, const std::vector<int>& rows) {
   Eigen::MatrixX3d result(static_cast<Eigen::Index>(rows.size()), 3);
   for (size_t i = 0; i < rows.size(); ++i) result.row(static_cast<Eigen::Index>(i)) = x.row(rows[i]);
   return result;
@@ -33,7 +33,8 @@ GlobalPose::GlobalPose(const PoseSet& poses) : poses_(poses) {
   }
 }
 
-Eigen::MatrixX3d GlobalPose::place(const Eigen::MatrixX3d& shape, const Eigen::VectorXd& weights) const {
+Eigen::MatrixX3d GlobalPose::place(const Eigen::Ref<const Eigen::MatrixX3d>& shape,
+                                   const Eigen::VectorXd& weights) const {
   Eigen::RowVector3d centre = Eigen::RowVector3d::Zero();
   Eigen::Vector3d log = Eigen::Vector3d::Zero();
   Eigen::MatrixX3d result = Eigen::MatrixX3d::Zero(shape.rows(), 3);

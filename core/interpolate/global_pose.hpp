@@ -19,7 +19,7 @@ class GlobalPose {
   /// `shape` (#V by 3, placed anywhere) moved rigidly so that it is turned like pose 0 by
   /// exp(sum_k w_k log R_k) and centred on sum_k w_k c_k, for the K `weights`. Vertices that no face
   /// uses carry no shape: they take the linear blend of their positions.
-  Eigen::MatrixX3d place(const Eigen::MatrixX3d& shape, const Eigen::VectorXd& weights) const;
+  Eigen::MatrixX3d place(const Eigen::Ref<const Eigen::MatrixX3d>& shape, const Eigen::VectorXd& weights) const;
 
   /// Rows of the vertices that faces use.
   const std::vector<int>& used_vertices() const { return used_; }

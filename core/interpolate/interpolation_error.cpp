@@ -73,7 +73,7 @@ InterpolationErrorMeter::InterpolationErrorMeter(const PoseSet& poses, EdgeMap e
   reference_areas_ = smallest_face_areas(poses);
 }
 
-int InterpolationErrorMeter::flipped_faces(const Eigen::MatrixX3d& result) const {
+int InterpolationErrorMeter::flipped_faces(const Eigen::Ref<const Eigen::MatrixX3d>& result) const {
   const int vertex_count = poses_.vertex_count();
   const int face_count = static_cast<int>(faces_.rows());
   const Eigen::MatrixX3d result_normals = face_normals(result, faces_);
@@ -107,7 +107,8 @@ int InterpolationErrorMeter::flipped_faces(const Eigen::MatrixX3d& result) const
   return flipped;
 }
 
-InterpolationError InterpolationErrorMeter::measure(const Eigen::MatrixX3d& result, const Eigen::VectorXd& weights) const {
+InterpolationError InterpolationErrorMeter::measure(const Eigen::Ref<const Eigen::MatrixX3d>& result,
+                                                    const Eigen::VectorXd& weights) const {
   if (weights.size() != coordinates_.pose_count()) {
     throw ArgumentError("interpolation error: " + std::to_string(weights.size()) + " weights for " +
                         std::to_string(coordinates_.pose_count()) + " poses");
@@ -145,7 +146,8 @@ InterpolationError InterpolationErrorMeter::measure(const Eigen::MatrixX3d& resu
   return error;
 }
 
-InterpolationError interpolation_error(const Eigen::MatrixX3d& result, const PoseSet& poses, const Eigen::VectorXd& weights) {
+InterpolationError interpolation_error(const Eigen::Ref<const Eigen::MatrixX3d>& result, const PoseSet& poses,
+                                       const Eigen::VectorXd& weights) {
   return InterpolationErrorMeter(poses).measure(result, weights);
 }
 

@@ -11,7 +11,7 @@ namespace {
 
 // Edge-connected components of the faces for which `member` holds, each with its vertices.
 template <typename Member>
-std::vector<MeshComponent> components(const Eigen::MatrixX3i& faces, const EdgeMap& edges,
+std::vector<MeshComponent> components(const Eigen::Ref<const Eigen::MatrixX3i>& faces, const EdgeMap& edges,
                                       const AdjacencyLists& incident_faces, Member member) {
   const int face_count = static_cast<int>(faces.rows());
   std::vector<char> seen(static_cast<size_t>(face_count), 0);
@@ -45,7 +45,8 @@ std::vector<MeshComponent> components(const Eigen::MatrixX3i& faces, const EdgeM
 
 }  // namespace
 
-JointLayout build_joint_layout(const Eigen::MatrixX3i& faces, const Eigen::VectorXi& face_parts, const EdgeMap& edges,
+JointLayout build_joint_layout(const Eigen::Ref<const Eigen::MatrixX3i>& faces, const Eigen::VectorXi& face_parts,
+                               const EdgeMap& edges,
                                const AdjacencyLists& incident_faces, const AdjacencyLists& neighbours, int joint_width) {
   if (joint_width < 1) throw ArgumentError("joint width must be at least 1, got " + std::to_string(joint_width));
   const int face_count = static_cast<int>(faces.rows());

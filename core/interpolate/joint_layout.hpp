@@ -30,7 +30,8 @@ struct JointLayout {
 /// without strip), split into edge-connected components. Every face lies in a joint or a rigid piece;
 /// the faces of strip `joint_width` in both. `edges` = edge_map(faces), `incident_faces` =
 /// edge_faces(edges), `neighbours` = vertex_neighbours(faces, #V).
-JointLayout build_joint_layout(const Eigen::MatrixX3i& faces, const Eigen::VectorXi& face_parts, const EdgeMap& edges,
+JointLayout build_joint_layout(const Eigen::Ref<const Eigen::MatrixX3i>& faces, const Eigen::VectorXi& face_parts,
+                               const EdgeMap& edges,
                                const AdjacencyLists& incident_faces, const AdjacencyLists& neighbours, int joint_width);
 
 }  // namespace posekit::interpolation

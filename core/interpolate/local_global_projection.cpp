@@ -21,7 +21,7 @@ constexpr double kLargestTurn = 0.1;
 constexpr int kHistory = 3;
 
 // The side of face f that is the mesh edge between u and v.
-int side_between(const Eigen::MatrixX3i& faces, const EdgeMap& edges, int f, int u, int v) {
+int side_between(const Eigen::Ref<const Eigen::MatrixX3i>& faces, const EdgeMap& edges, int f, int u, int v) {
   for (int side = 0; side < 3; ++side) {
     const int p = faces(f, side);
     const int q = faces(f, (side + 1) % 3);
@@ -32,7 +32,8 @@ int side_between(const Eigen::MatrixX3i& faces, const EdgeMap& edges, int f, int
 
 }  // namespace
 
-LocalGlobalProjection::LocalGlobalProjection(const Eigen::MatrixX3i& faces, int vertex_count, const EdgeMap& edges,
+LocalGlobalProjection::LocalGlobalProjection(const Eigen::Ref<const Eigen::MatrixX3i>& faces, int vertex_count,
+                                             const EdgeMap& edges,
                                              const AdjacencyLists& incident_faces, const std::vector<char>& hinge,
                                              const Eigen::VectorXd& reference_lengths, double hinge_weight)
     : edges_(edges.edges), hinge_weight_(hinge_weight), anchor_(kAnchorWeight) {

@@ -27,7 +27,7 @@ class LocalGlobalProjection {
   /// `incident_faces` = edge_faces(edges), the #E `hinge` flags and #E `reference_lengths` (> 0; every
   /// edge vector is weighed by one over its squared reference length, so errors count relatively and
   /// small features keep their shape); hinges weigh `hinge_weight` (>= 0) against an edge's own length.
-  LocalGlobalProjection(const Eigen::MatrixX3i& faces, int vertex_count, const EdgeMap& edges,
+  LocalGlobalProjection(const Eigen::Ref<const Eigen::MatrixX3i>& faces, int vertex_count, const EdgeMap& edges,
                         const AdjacencyLists& incident_faces, const std::vector<char>& hinge,
                         const Eigen::VectorXd& reference_lengths, double hinge_weight);
 

@@ -15,7 +15,7 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-Eigen::MatrixX3d rows_of(const Eigen::MatrixX3d& x, const std::vector<int>& rows) {
+Eigen::MatrixX3d rows_of(const Eigen::Ref<const Eigen::MatrixX3d>& x, const std::vector<int>& rows) {
   Eigen::MatrixX3d result(static_cast<Eigen::Index>(rows.size()), 3);
   for (size_t i = 0; i < rows.size(); ++i) result.row(static_cast<Eigen::Index>(i)) = x.row(rows[i]);
   return result;

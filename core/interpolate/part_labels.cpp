@@ -10,7 +10,8 @@
 
 namespace posekit {
 
-Eigen::VectorXi read_part_labels(const std::filesystem::path& file, int vertex_count, const Eigen::MatrixX3i& faces) {
+Eigen::VectorXi read_part_labels(const std::filesystem::path& file, int vertex_count,
+                                 const Eigen::Ref<const Eigen::MatrixX3i>& faces) {
   const std::string name = file.string();
   std::vector<int> labels = read_integer_list(file, "part id", 0, std::numeric_limits<int>::max());
   const auto count = static_cast<long long>(labels.size());

@@ -156,7 +156,8 @@ Eigen::MatrixX3d PoseInterpolator::interpolate(const Eigen::VectorXd& weights_in
   return result;
 }
 
-InterpolationError PoseInterpolator::error(const Eigen::MatrixX3d& result, const Eigen::VectorXd& weights) const {
+InterpolationError PoseInterpolator::error(const Eigen::Ref<const Eigen::MatrixX3d>& result,
+                                           const Eigen::VectorXd& weights) const {
   return state_->meter->measure(result, normalized_weights(weights, state_->poses.pose_count()));
 }
 

@@ -166,7 +166,8 @@ Eigen::VectorXi connected_parts(const Eigen::VectorXi& face_labels, const EdgeMa
   return parts;
 }
 
-Eigen::VectorXi face_labels_from_vertex_labels(const Eigen::VectorXi& vertex_labels, const Eigen::MatrixX3i& faces) {
+Eigen::VectorXi face_labels_from_vertex_labels(const Eigen::VectorXi& vertex_labels,
+                                               const Eigen::Ref<const Eigen::MatrixX3i>& faces) {
   check_face_indices(faces, static_cast<int>(vertex_labels.size()));
   Eigen::VectorXi labels(faces.rows());
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {

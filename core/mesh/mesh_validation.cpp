@@ -13,11 +13,11 @@ namespace {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 
-bool is_finite_row(const Eigen::MatrixX3d& vertices, Eigen::Index row) {
+bool is_finite_row(const Eigen::Ref<const Eigen::MatrixX3d>& vertices, Eigen::Index row) {
   return std::isfinite(vertices(row, 0)) && std::isfinite(vertices(row, 1)) && std::isfinite(vertices(row, 2));
 }
 
-Kernel::Point_3 point(const Eigen::MatrixX3d& vertices, Eigen::Index row) {
+Kernel::Point_3 point(const Eigen::Ref<const Eigen::MatrixX3d>& vertices, Eigen::Index row) {
   return {vertices(row, 0), vertices(row, 1), vertices(row, 2)};
 }
 

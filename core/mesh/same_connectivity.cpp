@@ -6,7 +6,7 @@
 namespace posekit {
 namespace {
 
-std::string face_text(const Eigen::MatrixX3i& faces, Eigen::Index f) {
+std::string face_text(const Eigen::Ref<const Eigen::MatrixX3i>& faces, Eigen::Index f) {
   return "(" + std::to_string(faces(f, 0)) + ", " + std::to_string(faces(f, 1)) + ", " + std::to_string(faces(f, 2)) +
          ")";
 }

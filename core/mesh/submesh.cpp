@@ -5,7 +5,8 @@
 
 namespace posekit {
 
-Mesh submesh(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces, const std::vector<char>& keep_face,
+Mesh submesh(const Eigen::Ref<const Eigen::MatrixX3d>& vertices, const Eigen::Ref<const Eigen::MatrixX3i>& faces,
+             const std::vector<char>& keep_face,
              std::vector<int>* original_vertex) {
   if (keep_face.size() != static_cast<size_t>(faces.rows())) {
     throw ArgumentError("submesh: " + std::to_string(keep_face.size()) + " face flags for " +

@@ -2,7 +2,8 @@
 # Checks every #include of the library's sources and public headers against the layer table of
 # cmake/PosekitLayers.cmake: a file may include headers of its own layer and public headers of the
 # layers its layer uses (directly or not); internal headers of another layer only where that layer
-# allows it. Prints one line per violation and fails when there is any. PLANT adds one line to one
+# allows it; a third-party header folder that a layer CONFINES (CGAL/) only in that layer. Prints one
+# line per violation and fails when there is any. PLANT adds one line to one
 # file (a path relative to ROOT) as if it were written there, so that the check can be shown to fail.
 cmake_minimum_required(VERSION 3.25)
 if(NOT ROOT)
@@ -29,6 +30,10 @@ foreach(layer IN LISTS POSEKIT_LAYERS)
   endforeach()
   foreach(header IN LISTS POSEKIT_LAYER_${layer}_HEADERS)
     set(owner_of_header_${header} ${layer})
+  endforeach()
+  foreach(prefix IN LISTS POSEKIT_LAYER_${layer}_CONFINES)
+    list(APPEND confined_prefixes ${prefix})
+    set(confined_by_${prefix} ${layer})
   endforeach()
 endforeach()
 file(GLOB public_headers RELATIVE ${ROOT} ${ROOT}/core/include/posekit/*.hpp)
@@ -88,6 +93,13 @@ foreach(path IN LISTS files)
     endif()
     set(quoted ${CMAKE_MATCH_1})
     set(included ${CMAKE_MATCH_2})
+    foreach(prefix IN LISTS confined_prefixes)
+      string(FIND "${included}" "${prefix}" at)
+      if(at EQUAL 0 AND NOT layer STREQUAL confined_by_${prefix})
+        list(APPEND violations
+             "${path}: layer ${layer} includes ${included}, which only layer ${confined_by_${prefix}} may include")
+      endif()
+    endforeach()
     set(target "")
     if(included MATCHES "^posekit/")
       set(target core/include/${included})

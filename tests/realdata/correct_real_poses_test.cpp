@@ -23,9 +23,39 @@ namespace {
 struct PosePair {
   std::string reference;
   std::string target;
+  std::string freed_by = {};  ///< the stage whose pose first has no new face; empty: not asserted
 };
 
 void PrintTo(const PosePair& pair, std::ostream* out) { *out << pair.reference << " -> " << pair.target; }
+
+std::string stage_list(const CorrectionReport& report) {
+  std::string list;
+  for (const StageReport& stage : report.stages) {
+    if (!stage.ran) continue;
+    list += " " + stage.name + " " + std::to_string(stage.new_faces_before) + "->" +
+            std::to_string(stage.new_faces_after) + (stage.kept ? " kept;" : ";");
+  }
+  return list;
+}
+
+// Each stage starts from the candidate the one before it left, and the first candidate without a new
+// face comes from a stage whose pose was kept: `freed_by`, where the pose names one.
+void expect_stage_chain(const CorrectionReport& report, const std::string& freed_by) {
+  const StageReport* previous = nullptr;
+  const StageReport* freeing = nullptr;
+  for (const StageReport& stage : report.stages) {
+    if (!stage.ran) continue;
+    if (previous != nullptr) {
+      EXPECT_EQ(stage.new_faces_before, previous->new_faces_after) << stage.name << " after " << previous->name;
+    }
+    if (!stage.kept) EXPECT_EQ(stage.new_faces_after, stage.new_faces_before) << stage.name << " was not kept";
+    if (freeing == nullptr && stage.new_faces_after == 0) freeing = &stage;
+    previous = &stage;
+  }
+  ASSERT_NE(freeing, nullptr) << "no stage freed the pose:" << stage_list(report);
+  EXPECT_TRUE(freeing->kept) << freeing->name;
+  if (!freed_by.empty()) EXPECT_EQ(freeing->name, freed_by) << "stages:" << stage_list(report);
+}
 
 void expect_corrected(const PosePair& pair, const CorrectionOptions& options) {
   POSEKIT_REQUIRE_SHARED_POSE(reference_file, pair.reference);
@@ -53,6 +83,7 @@ void expect_corrected(const PosePair& pair, const CorrectionOptions& options) {
   // Every stage of the ladder reported, in order, and the last one's count is the result's.
   ASSERT_FALSE(report.stages.empty());
   EXPECT_EQ(report.stages.back().new_faces_after, report.result.new_intersecting_faces);
+  expect_stage_chain(report, pair.freed_by);
 }
 
 std::string pose_name(const ::testing::TestParamInfo<PosePair>& info) {
@@ -89,7 +120,9 @@ TEST_P(CorrectRealPose, RemovesNewIntersectionsAndReproducesTheRest) { expect_co
 
 INSTANTIATE_TEST_SUITE_P(SharedPoses, CorrectRealPose, ::testing::ValuesIn(shared_targets()), pose_name);
 
-// The published method, every vertex in one field, on the poses that need each repair stage.
+// The published method, every vertex in one field, on poses that each stage of the ladder frees:
+// the field alone, the fallback, the rollback, the local correction, the contact separation and the
+// legs through the halfway pose. A different stage freeing one of them is a change of behaviour.
 class CorrectRealPoseWholeMesh : public ::testing::TestWithParam<PosePair> {};
 
 TEST_P(CorrectRealPoseWholeMesh, RemovesNewIntersectionsAndReproducesTheRest) {
@@ -98,18 +131,25 @@ TEST_P(CorrectRealPoseWholeMesh, RemovesNewIntersectionsAndReproducesTheRest) {
   expect_corrected(GetParam(), options);
 }
 
-INSTANTIATE_TEST_SUITE_P(SharedPoses, CorrectRealPoseWholeMesh,
-                         ::testing::Values(PosePair{"lion-poses/lion-reference.obj", "lion-poses/lion-01.obj"},
-                                           PosePair{"lion-poses/lion-reference.obj", "lion-poses/lion-03.obj"},
-                                           PosePair{"horse-poses/horse-10.obj", "horse-poses/horse-04.obj"},
-                                           PosePair{"cat-poses/cat-reference.obj", "cat-poses/cat-08.obj"},
-                                           PosePair{"lion-poses/lion-reference.obj", "lion-poses/lion-08.obj"},
-                                           PosePair{"lion-poses/lion-reference.obj", "lion-poses/lion-09.obj"},
-                                           PosePair{"lion-poses/lion-reference.obj", "lion-poses/lion-04.obj"},
-                                           PosePair{"cat-poses/cat-reference.obj", "cat-poses/cat-04.obj"},
-                                           PosePair{"lion-poses/lion-reference.obj", "lion-poses/lion-07.obj"},
-                                           PosePair{"cat-poses/cat-reference.obj", "cat-poses/cat-07.obj"}),
-                         pose_name);
+PosePair animal_pose(const std::string& animal, const std::string& number, const std::string& freed_by) {
+  const std::string folder = animal + "-poses/";
+  return {folder + animal + "-reference.obj", folder + animal + "-" + number + ".obj", freed_by};
+}
+
+std::vector<PosePair> whole_mesh_targets() {
+  return {animal_pose("lion", "01", "fallback"),
+          animal_pose("lion", "03", "fallback"),
+          {"horse-poses/horse-10.obj", "horse-poses/horse-04.obj", "field"},
+          animal_pose("cat", "08", "rollback"),
+          animal_pose("lion", "08", "local-correction"),
+          animal_pose("lion", "09", "contact-separation"),
+          animal_pose("lion", "04", "local-correction"),
+          animal_pose("cat", "04", "local-correction"),
+          animal_pose("lion", "07", "halfway"),
+          animal_pose("cat", "07", "contact-separation")};
+}
+
+INSTANTIATE_TEST_SUITE_P(SharedPoses, CorrectRealPoseWholeMesh, ::testing::ValuesIn(whole_mesh_targets()), pose_name);
 
 }  // namespace
 }  // namespace posekit

@@ -17,10 +17,12 @@ namespace posekit {
 /// and the one-ring around both held at `current` (one flag per vertex each; `neighbours` the
 /// vertex one-rings). Nothing where the region's surface is not a manifold CGAL can take, or where
 /// the solve fails or gives a coordinate that is not finite.
-std::optional<Eigen::MatrixX3d> as_rigid_as_possible(const Eigen::MatrixX3d& rest, const Eigen::MatrixX3d& current,
-                                                     const Eigen::MatrixX3i& faces, const std::vector<char>& free,
+std::optional<Eigen::MatrixX3d> as_rigid_as_possible(const Eigen::Ref<const Eigen::MatrixX3d>& rest,
+                                                     const Eigen::Ref<const Eigen::MatrixX3d>& current,
+                                                     const Eigen::Ref<const Eigen::MatrixX3i>& faces,
+                                                     const std::vector<char>& free,
                                                      const std::vector<char>& handles,
-                                                     const Eigen::MatrixX3d& handle_positions,
+                                                     const Eigen::Ref<const Eigen::MatrixX3d>& handle_positions,
                                                      const AdjacencyLists& neighbours);
 
 }  // namespace posekit

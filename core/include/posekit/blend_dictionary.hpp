@@ -86,7 +86,7 @@ class DictionaryChange {
   /// `from` and `to` share #V; `mass` has #V positive entries. Throws ArgumentError otherwise.
   DictionaryChange(const BlendDictionary& from, const BlendDictionary& to, const Eigen::VectorXd& mass);
   /// from.atom_count() by 3 transformations -> to.atom_count() by 3.
-  Eigen::MatrixX3d operator()(const Eigen::MatrixX3d& transformations) const;
+  Eigen::MatrixX3d operator()(const Eigen::Ref<const Eigen::MatrixX3d>& transformations) const;
 
  private:
   Eigen::MatrixXd cross_;  // D'^T M D

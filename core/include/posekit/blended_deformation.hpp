@@ -151,11 +151,12 @@ class BlendedDeformer {
   /// Deforms from the constraint targets (#constraints by 3, one row per constraint, in any frame and
   /// scale): the initial solve without rotations, then average-ARAP and minimal-ARAP iterations.
   /// Throws ArgumentError when the sizes disagree, a target is not finite, or there are no constraints.
-  BlendResult deform(const Eigen::MatrixX3d& targets) const;
+  BlendResult deform(const Eigen::Ref<const Eigen::MatrixX3d>& targets) const;
   /// The same, continuing from the transformations of `start` instead of the initial solve: for
   /// non-rigid ICP, where the constraints change a little between calls. `average_iterations` and
   /// `minimal_iterations` replace the options' counts when they are >= 0.
-  BlendResult deform(const Eigen::MatrixX3d& targets, const BlendResult& start, int average_iterations = -1,
+  BlendResult deform(const Eigen::Ref<const Eigen::MatrixX3d>& targets, const BlendResult& start,
+                     int average_iterations = -1,
                      int minimal_iterations = -1) const;
 
   /// The pose at t in [0, 1] between two deformations of this deformer: rotations interpolated
@@ -166,7 +167,7 @@ class BlendedDeformer {
   Eigen::MatrixX3d interpolate(const BlendResult& a, const BlendResult& b, double t) const;
 
   /// #V by 3 vertices of the transformations (#atoms by 3, internal frame), in the targets' frame.
-  Eigen::MatrixX3d vertices(const Eigen::MatrixX3d& transformations) const;
+  Eigen::MatrixX3d vertices(const Eigen::Ref<const Eigen::MatrixX3d>& transformations) const;
 
  private:
   struct State;

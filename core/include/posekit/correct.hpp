@@ -104,7 +104,7 @@ struct DriftSummary {
   double median = 0;
   double max = 0;
   /// Of #N by 3 differences; zeros for N = 0.
-  static DriftSummary of(const Eigen::MatrixX3d& differences);
+  static DriftSummary of(const Eigen::Ref<const Eigen::MatrixX3d>& differences);
 };
 
 /// Endpoint drift before and after drift compensation.
@@ -207,7 +207,8 @@ using CorrectionProgress = std::function<void(const std::string& stage, double f
 /// Corrects `target` (#V by 3) against the clean `reference` (#V by 3) sharing the #F by 3 `faces`:
 /// returns the corrected #V by 3 pose. Throws ArgumentError for inconsistent input or options.
 Eigen::MatrixX3d correct_pose(const Eigen::Ref<const Eigen::MatrixX3d>& reference,
-                              const Eigen::Ref<const Eigen::MatrixX3d>& target, const Eigen::MatrixX3i& faces,
+                              const Eigen::Ref<const Eigen::MatrixX3d>& target,
+                              const Eigen::Ref<const Eigen::MatrixX3i>& faces,
                               Device& device, const CorrectionOptions& options = {},
                               CorrectionReport* report = nullptr, const CorrectionProgress& progress = {});
 

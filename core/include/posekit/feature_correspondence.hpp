@@ -32,7 +32,8 @@ struct CorrespondenceChoice {
 /// the one whose final (minimal-ARAP) energy is lowest. Between assignments only the constraints that
 /// change are replaced, by rank-one updates of the factorization. Leaves `deformer` constrained by
 /// the chosen assignment. Throws ArgumentError for no assignment or mismatched sizes.
-CorrespondenceChoice choose_correspondence(BlendedDeformer& deformer, const Eigen::MatrixX3d& positions,
+CorrespondenceChoice choose_correspondence(BlendedDeformer& deformer,
+                                           const Eigen::Ref<const Eigen::MatrixX3d>& positions,
                                            const std::vector<std::vector<int>>& assignments, double weight = 1.0);
 
 }  // namespace posekit

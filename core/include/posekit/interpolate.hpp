@@ -108,7 +108,7 @@ class PoseInterpolator {
   Eigen::MatrixX3d interpolate(const Eigen::VectorXd& weights, InterpolationStepReport* report = nullptr);
 
   /// The error of `result` against the edge lengths and dihedral angles interpolated with `weights`.
-  InterpolationError error(const Eigen::MatrixX3d& result, const Eigen::VectorXd& weights) const;
+  InterpolationError error(const Eigen::Ref<const Eigen::MatrixX3d>& result, const Eigen::VectorXd& weights) const;
 
   const PoseSet& poses() const;
   const InterpolationOptions& options() const;

@@ -45,12 +45,12 @@ class InterpolationErrorMeter {
 
   /// Errors of the #V by 3 `result` against the targets for the K `weights` (one per pose).
   /// Throws ArgumentError on mismatched sizes.
-  InterpolationError measure(const Eigen::MatrixX3d& result, const Eigen::VectorXd& weights) const;
+  InterpolationError measure(const Eigen::Ref<const Eigen::MatrixX3d>& result, const Eigen::VectorXd& weights) const;
 
   const EdgeSpaceCoordinates& coordinates() const { return coordinates_; }
 
  private:
-  int flipped_faces(const Eigen::MatrixX3d& result) const;
+  int flipped_faces(const Eigen::Ref<const Eigen::MatrixX3d>& result) const;
 
   PoseSet poses_;
   Eigen::MatrixX3i faces_;
@@ -62,7 +62,7 @@ class InterpolationErrorMeter {
 };
 
 /// One-shot: InterpolationErrorMeter(poses).measure(result, weights).
-InterpolationError interpolation_error(const Eigen::MatrixX3d& result, const PoseSet& poses,
+InterpolationError interpolation_error(const Eigen::Ref<const Eigen::MatrixX3d>& result, const PoseSet& poses,
                                        const Eigen::VectorXd& weights);
 
 /// Smallest area of each face over all poses of `poses`: #F values.

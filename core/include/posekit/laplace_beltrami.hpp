@@ -10,15 +10,18 @@ namespace posekit {
 /// Throws ArgumentError unless the #V by 3 `vertices` and #F by 3 `faces` make a mesh on which the
 /// operator is defined: finite coordinates, valid indices, every vertex in some face, and no face whose
 /// area is below 1e-12 of the mean face area. The message names the first offending face or vertex.
-void check_laplace_beltrami_mesh(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces);
+void check_laplace_beltrami_mesh(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
+                                 const Eigen::Ref<const Eigen::MatrixX3i>& faces);
 
 /// #V by #V cotangent Laplacian, positive semidefinite: L(i,j) = -(cot a_ij + cot b_ij) / 2 for each
 /// edge ij (a_ij, b_ij the angles opposite it), L(i,i) = -sum_j L(i,j); x^T L x is the Dirichlet energy
 /// of the piecewise-linear function x. Faces must be valid (check_laplace_beltrami_mesh).
-Eigen::SparseMatrix<double> cotangent_laplacian(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces);
+Eigen::SparseMatrix<double> cotangent_laplacian(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
+                                                const Eigen::Ref<const Eigen::MatrixX3i>& faces);
 
 /// #V lumped (barycentric) masses: a third of the area of every face around each vertex.
-Eigen::VectorXd lumped_mass(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces);
+Eigen::VectorXd lumped_mass(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
+                            const Eigen::Ref<const Eigen::MatrixX3i>& faces);
 
 /// The lowest eigenpairs of L phi = lambda M phi (L cotangent Laplacian, M lumped mass).
 struct LaplaceBeltramiBasis {
@@ -31,7 +34,8 @@ struct LaplaceBeltramiBasis {
 /// found by Spectra in shift-invert mode around a small negative shift with one sparse LDLT
 /// factorization. 1 <= count < #V; throws ArgumentError otherwise, for a degenerate mesh (see
 /// check_laplace_beltrami_mesh), or when the eigensolver does not converge.
-LaplaceBeltramiBasis laplace_beltrami_basis(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces,
+LaplaceBeltramiBasis laplace_beltrami_basis(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
+                                            const Eigen::Ref<const Eigen::MatrixX3i>& faces,
                                             int count);
 
 /// m by m smoothness of m blending weight functions (#V by m `weights`): S = (L W)^T M^-1 (L W), the

@@ -55,7 +55,8 @@ struct FeatureConstraints {
 /// zero at the rim. Throws ArgumentError on bad sizes, an index out of range, a bad option or an
 /// empty scan.
 FeatureConstraints feature_constraints(const BlendedDeformer& deformer, const Mesh& scan, const std::vector<int>& features,
-                                       const Eigen::MatrixX3d& feature_positions, const ScanFitOptions& options = {});
+                                       const Eigen::Ref<const Eigen::MatrixX3d>& feature_positions,
+                                       const ScanFitOptions& options = {});
 
 /// One round of non-rigid ICP.
 struct ScanFitIteration {
@@ -83,12 +84,13 @@ struct ScanRegistration {
 /// triangle mesh (#S by 3 vertices; faces give the normals). Leaves `deformer` with the last round's
 /// constraints. Throws ArgumentError on bad sizes or an empty scan.
 ScanRegistration fit_to_scan(BlendedDeformer& deformer, const Mesh& scan, const std::vector<LinearConstraint>& fixed,
-                             const Eigen::MatrixX3d& fixed_targets, const BlendResult& start,
+                             const Eigen::Ref<const Eigen::MatrixX3d>& fixed_targets, const BlendResult& start,
                              const ScanFitOptions& options = {});
 
 /// Partial registration: the feature constraints (feature_constraints()), a deformation from them
 /// alone, then fit_to_scan with them as the fixed constraints.
 ScanRegistration register_partial_scan(BlendedDeformer& deformer, const Mesh& scan, const std::vector<int>& features,
-                                       const Eigen::MatrixX3d& feature_positions, const ScanFitOptions& options = {});
+                                       const Eigen::Ref<const Eigen::MatrixX3d>& feature_positions,
+                                       const ScanFitOptions& options = {});
 
 }  // namespace posekit

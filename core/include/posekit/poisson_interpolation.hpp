@@ -19,7 +19,9 @@ class PoissonInterpolator {
  public:
   /// `source` and `target` are #V by 3 poses of the #F by 3 `faces`. Throws ArgumentError when the
   /// sizes differ or a face index is out of range.
-  PoissonInterpolator(const Eigen::MatrixX3d& source, const Eigen::MatrixX3d& target, const Eigen::MatrixX3i& faces);
+  PoissonInterpolator(const Eigen::Ref<const Eigen::MatrixX3d>& source,
+                      const Eigen::Ref<const Eigen::MatrixX3d>& target,
+                      const Eigen::Ref<const Eigen::MatrixX3i>& faces);
   ~PoissonInterpolator();
   PoissonInterpolator(PoissonInterpolator&&) noexcept;
   PoissonInterpolator& operator=(PoissonInterpolator&&) noexcept;

@@ -51,7 +51,7 @@ struct RbfFitReport {
 /// scale (e.g. normalized into the unit sphere): the system is solved in the caller's coordinates.
 /// Throws ArgumentError for options out of range, mismatched sizes, non-finite input or fewer than
 /// 20 constraints, and Error when the system turns singular (e.g. all constraints at one time).
-RbfField fit_rbf_field(Device& device, const Points4& positions, const Eigen::MatrixX3d& values,
+RbfField fit_rbf_field(Device& device, const Points4& positions, const Eigen::Ref<const Eigen::MatrixX3d>& values,
                        const RbfFitOptions& options, RbfFitReport* report = nullptr);
 
 namespace detail {
@@ -64,7 +64,8 @@ class RbfFit {
  public:
   /// Runs the greedy fit on `device` (which must outlive this object); arguments and exceptions as
   /// for fit_rbf_field().
-  RbfFit(Device& device, const Points4& positions, const Eigen::MatrixX3d& values, const RbfFitOptions& options);
+  RbfFit(Device& device, const Points4& positions, const Eigen::Ref<const Eigen::MatrixX3d>& values,
+         const RbfFitOptions& options);
   ~RbfFit();
   RbfFit(RbfFit&&) noexcept;
   RbfFit& operator=(RbfFit&&) noexcept;
@@ -77,7 +78,7 @@ class RbfFit {
   /// The field with the same centers interpolating `values` (#P by 3, one row per constraint, as
   /// `values` of the constructor; only the centers' rows are used). Throws ArgumentError on a size
   /// mismatch and Error when the solution is not finite.
-  RbfField refit(const Eigen::MatrixX3d& values) const;
+  RbfField refit(const Eigen::Ref<const Eigen::MatrixX3d>& values) const;
 
  private:
   std::unique_ptr<detail::RbfSystem> system_;

@@ -28,7 +28,7 @@ struct RigidTransform {
   Eigen::RowVector3d translation = Eigen::RowVector3d::Zero();
 
   /// #N by 3 transformed copy of the #N by 3 `points`.
-  Eigen::MatrixX3d apply(const Eigen::MatrixX3d& points) const;
+  Eigen::MatrixX3d apply(const Eigen::Ref<const Eigen::MatrixX3d>& points) const;
   Eigen::RowVector3d apply_to_point(const Eigen::RowVector3d& point) const { return point * rotation.transpose() + translation; }
   /// The motion that applies `first` and then this one.
   RigidTransform after(const RigidTransform& first) const;
@@ -38,7 +38,8 @@ struct RigidTransform {
 /// The rigid motion T minimizing sum_i |T(source_i) - target_i|^2 over the corresponding rows of the
 /// #N by 3 `source` and `target` (Kabsch). Throws ArgumentError when the sizes differ or N is 0; for
 /// fewer than three independent points the rotation is one of the minimizers.
-RigidTransform best_rigid_transform(const Eigen::MatrixX3d& source, const Eigen::MatrixX3d& target);
+RigidTransform best_rigid_transform(const Eigen::Ref<const Eigen::MatrixX3d>& source,
+                                    const Eigen::Ref<const Eigen::MatrixX3d>& target);
 
 /// Rigid motions T_k, one per copy (each #N by 3, rows corresponding), minimizing the squared
 /// distances between all pairs of transformed copies, with T_0 the identity: each copy is aligned

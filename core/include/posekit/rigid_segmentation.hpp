@@ -36,13 +36,15 @@ Eigen::VectorXi connected_parts(const Eigen::VectorXi& face_labels, const EdgeMa
 
 /// Per-face labels from #V per-vertex labels of the #F by 3 `faces`: each face takes the label most
 /// of its corners have (the smallest of three different ones).
-Eigen::VectorXi face_labels_from_vertex_labels(const Eigen::VectorXi& vertex_labels, const Eigen::MatrixX3i& faces);
+Eigen::VectorXi face_labels_from_vertex_labels(const Eigen::VectorXi& vertex_labels,
+                                               const Eigen::Ref<const Eigen::MatrixX3i>& faces);
 
 /// Reads a part label file: non-negative integer part ids separated by white space ('#' starts a
 /// comment), one per vertex (#V ids) or one per face (#F ids; read as per-face when #V = #F), and
 /// returns #F per-face labels. Throws InputError naming `file` when it cannot be read, holds
 /// something else than such ids, or holds neither #V nor #F of them.
-Eigen::VectorXi read_part_labels(const std::filesystem::path& file, int vertex_count, const Eigen::MatrixX3i& faces);
+Eigen::VectorXi read_part_labels(const std::filesystem::path& file, int vertex_count,
+                                 const Eigen::Ref<const Eigen::MatrixX3i>& faces);
 
 /// Writes one part id per face, one per line, whole or not at all (InputError naming `file` on failure).
 void write_part_labels(const std::filesystem::path& file, const Eigen::VectorXi& face_labels);

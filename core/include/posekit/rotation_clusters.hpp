@@ -14,7 +14,8 @@ namespace posekit {
 /// 3 by 3 rotation of each vertex's one-ring from the reference to every other example (divided by
 /// the square root of the number of examples). Vertices that move rigidly together across all
 /// examples share a label. Deterministic. Throws ArgumentError for bad sizes or count outside [1, #V].
-std::vector<int> rotation_clusters(const std::vector<Eigen::MatrixX3d>& examples, const Eigen::MatrixX3i& faces,
+std::vector<int> rotation_clusters(const std::vector<Eigen::MatrixX3d>& examples,
+                                   const Eigen::Ref<const Eigen::MatrixX3i>& faces,
                                    int count, double position_weight = 1.0);
 
 /// Labels from skinning weights (#V by m): each vertex goes to its largest weight; labels are

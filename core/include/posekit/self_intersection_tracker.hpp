@@ -17,11 +17,13 @@ using FacePairs = std::vector<std::pair<int, int>>;
 
 class SelfIntersectionTracker {
  public:
-  /// Tests the #V by 3 `vertices` of the #F by 3 `faces` whole. `faces` must outlive the tracker.
+  /// Tests the #V by 3 `vertices` of the #F by 3 `faces` whole; keeps its own copy of both.
   /// Throws ArgumentError on a face index outside [0, #V) or a coordinate that is not finite.
-  SelfIntersectionTracker(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces);
+  SelfIntersectionTracker(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
+                          const Eigen::Ref<const Eigen::MatrixX3i>& faces);
   /// The same with the pairs of `vertices` already known (self_intersecting_face_pairs of them).
-  SelfIntersectionTracker(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces, FacePairs known_pairs);
+  SelfIntersectionTracker(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
+                          const Eigen::Ref<const Eigen::MatrixX3i>& faces, FacePairs known_pairs);
   ~SelfIntersectionTracker();
   SelfIntersectionTracker(const SelfIntersectionTracker& other);
   SelfIntersectionTracker& operator=(const SelfIntersectionTracker& other);
@@ -30,19 +32,21 @@ class SelfIntersectionTracker {
 
   /// The pose as last tested (#V by 3).
   const Eigen::MatrixX3d& vertices() const;
+  /// The faces it was made with.
+  const Eigen::MatrixX3i& faces() const;
   /// Its intersecting pairs.
   const FacePairs& pairs() const { return pairs_; }
   /// The pairs `changed` (#V by 3, the same faces) has: only the faces with a corner that differs from
   /// vertices() are tested again. Safe to call from several threads at once.
-  FacePairs pairs_if(const Eigen::MatrixX3d& changed) const;
+  FacePairs pairs_if(const Eigen::Ref<const Eigen::MatrixX3d>& changed) const;
   /// Moves the tracker to `changed`, testing again as pairs_if() does.
-  void update(const Eigen::MatrixX3d& changed);
+  void update(const Eigen::Ref<const Eigen::MatrixX3d>& changed);
   /// Moves the tracker to `changed` whose pairs are `known` (pairs_if(changed) of this tracker as it is).
-  void update(const Eigen::MatrixX3d& changed, FacePairs known);
+  void update(const Eigen::Ref<const Eigen::MatrixX3d>& changed, FacePairs known);
 
  private:
   class Grid;
-  void check_pose(const Eigen::MatrixX3d& changed) const;
+  void check_pose(const Eigen::Ref<const Eigen::MatrixX3d>& changed) const;
   std::unique_ptr<Grid> grid_;
   FacePairs pairs_;
 };

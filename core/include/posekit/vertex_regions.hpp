@@ -15,16 +15,18 @@ namespace posekit {
 std::vector<int> ring_distances(const std::vector<char>& flagged, const AdjacencyLists& neighbours, int limit);
 
 /// One flag per vertex (`vertex_count` of them), set on the corners of the faces in `face_list`.
-std::vector<char> face_vertices(const std::vector<int>& face_list, const Eigen::MatrixX3i& faces, size_t vertex_count);
+std::vector<char> face_vertices(const std::vector<int>& face_list, const Eigen::Ref<const Eigen::MatrixX3i>& faces,
+                                size_t vertex_count);
 
 /// The flagged vertices and every vertex within `rings` edges of one.
 std::vector<char> within_rings(const std::vector<char>& flagged, const AdjacencyLists& neighbours, int rings);
 
 /// One flag per face of `faces`: set where all three corners are flagged.
-std::vector<char> faces_within(const std::vector<char>& flagged, const Eigen::MatrixX3i& faces);
+std::vector<char> faces_within(const std::vector<char>& flagged, const Eigen::Ref<const Eigen::MatrixX3i>& faces);
 
 /// Whether a face of `face_list` has a flagged corner.
-bool touches(const std::vector<char>& flagged, const std::vector<int>& face_list, const Eigen::MatrixX3i& faces);
+bool touches(const std::vector<char>& flagged, const std::vector<int>& face_list,
+             const Eigen::Ref<const Eigen::MatrixX3i>& faces);
 
 /// The connected sets of flagged vertices (through edges between flagged vertices), largest first.
 std::vector<std::vector<int>> connected_sets(const std::vector<char>& flagged, const AdjacencyLists& neighbours);
@@ -33,6 +35,6 @@ std::vector<std::vector<int>> connected_sets(const std::vector<char>& flagged, c
 /// corner in another (`pairs` of faces of `faces`): both sides of an intersection are one problem.
 /// Largest first.
 std::vector<std::vector<int>> join_intersecting(const std::vector<std::vector<int>>& sets, const FacePairs& pairs,
-                                                const Eigen::MatrixX3i& faces);
+                                                const Eigen::Ref<const Eigen::MatrixX3i>& faces);
 
 }  // namespace posekit
