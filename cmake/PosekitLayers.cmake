@@ -1,18 +1,26 @@
 # The layers of the library, lowest first. For each: the folders of its sources and internal headers,
-# its public headers (core/include/posekit/<name>.hpp), the layers it uses directly, and the layers
-# allowed to include its internal headers (otherwise internals stay inside their layer).
+# its public headers (core/include/posekit/<name>.hpp), the layers it uses directly, the layers
+# allowed to include its internal headers (otherwise internals stay inside their layer), and the
+# third-party header folders it CONFINES (no other layer includes them).
 # One definition, two readers: posekit_add_layer() links the target of each layer to the targets of
 # the layers it uses, and tests/layers checks every #include of the tree against the same table.
 
 set(POSEKIT_LAYERS
-  base mesh geometry device backend_common cpu opencl vulkan cuda backends demo interpolate correct blend)
+  base cgal mesh geometry device backend_common cpu opencl vulkan cuda backends demo interpolate correct blend)
 
 # The error type every layer throws; header only.
 set(POSEKIT_LAYER_base_HEADERS error)
 
+# Everything that includes CGAL, behind CGAL-free internal headers: the mesh readers and writers,
+# exact face tests, the box intersection, ARAP. CONFINES: third-party headers no other layer includes.
+set(POSEKIT_LAYER_cgal_FOLDERS core/cgal)
+set(POSEKIT_LAYER_cgal_USES base)
+set(POSEKIT_LAYER_cgal_INTERNALS_FOR mesh geometry correct)
+set(POSEKIT_LAYER_cgal_CONFINES CGAL/)
+
 set(POSEKIT_LAYER_mesh_FOLDERS core/mesh)
 set(POSEKIT_LAYER_mesh_HEADERS mesh mesh_io mesh_validation integer_list submesh atomic_file)
-set(POSEKIT_LAYER_mesh_USES base)
+set(POSEKIT_LAYER_mesh_USES base cgal)
 
 set(POSEKIT_LAYER_geometry_FOLDERS core/geometry)
 set(POSEKIT_LAYER_geometry_HEADERS

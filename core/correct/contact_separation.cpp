@@ -1,5 +1,7 @@
 #include "correct/contact_separation.hpp"
 
+#include "cgal/nearest_point.hpp"
+
 #include "correct/region_relaxation.hpp"
 #include "correct/repair_stage.hpp"
 #include <posekit/vertex_regions.hpp>
@@ -9,7 +11,6 @@
 #include <posekit/topology.hpp>
 #include <posekit/winding_numbers.hpp>
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <Eigen/Geometry>
 #include <tbb/parallel_for.h>
 
@@ -22,7 +23,6 @@
 namespace posekit::detail {
 namespace {
 
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 
 // Rounds of pushes and relaxations at most (docs/correct.md: a pose pressed together throughout
 // needed nine).
@@ -49,10 +49,6 @@ constexpr int kFollowingRings = 2;
 // relaxation towards the reference straightened a curled tail by half the diagonal).
 constexpr int kFoldMargin = 6;
 constexpr double kLargestFoldMove = 24.0;  // mean edge lengths
-
-Kernel::Point_3 point_of(const Eigen::Ref<const Eigen::MatrixX3d>& vertices, int row) {
-  return {vertices(row, 0), vertices(row, 1), vertices(row, 2)};
-}
 
 // Per vertex of `pose`, the push that takes it out of the part it lies in, for the vertices of the
 // intersecting faces and those near them; zero elsewhere. `pushed` flags the vertices given one. A
@@ -104,21 +100,19 @@ Eigen::MatrixX3d contact_pushes(const Eigen::Ref<const Eigen::MatrixX3d>& pose,
       }
     }
     const std::vector<char> lying_in = faces_within(within_rings(other, neighbours, kPartnerRings), faces);
-    std::vector<Kernel::Triangle_3> surface;
     std::vector<Eigen::Index> surface_faces;
     for (Eigen::Index f = 0; f < faces.rows(); ++f) {
       if (lying_in[static_cast<size_t>(f)] == 0 || own_faces[static_cast<size_t>(f)] != 0) continue;
-      surface.emplace_back(point_of(pose, faces(f, 0)), point_of(pose, faces(f, 1)), point_of(pose, faces(f, 2)));
       surface_faces.push_back(f);
     }
-    const auto project = Kernel().construct_projected_point_3_object();
     for (int v : parts[p]) {
-      const Kernel::Point_3 point = point_of(pose, v);
+      const Eigen::RowVector3d point = pose.row(v);
       double depth = std::numeric_limits<double>::infinity();
-      for (size_t k = 0; k < surface.size(); ++k) {
-        const Kernel::Point_3 nearest = project(surface[k], point);
-        const Eigen::RowVector3d offset(point.x() - nearest.x(), point.y() - nearest.y(), point.z() - nearest.z());
-        if (offset.dot(outward.row(surface_faces[k])) > 0.0) continue;  // in front of that face
+      for (const Eigen::Index f : surface_faces) {
+        const Eigen::RowVector3d nearest = detail::nearest_point_on_triangle(
+            point, pose.row(faces(f, 0)), pose.row(faces(f, 1)), pose.row(faces(f, 2)));
+        const Eigen::RowVector3d offset = point - nearest;
+        if (offset.dot(outward.row(f)) > 0.0) continue;  // in front of that face
         depth = std::min(depth, offset.norm());
       }
       if (!std::isfinite(depth)) continue;

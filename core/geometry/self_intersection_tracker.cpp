@@ -1,4 +1,5 @@
-#include "geometry/face_pair_test.hpp"
+#include "cgal/face_pair_test.hpp"
+#include "geometry/face_bounds.hpp"
 #include "geometry/vertex_checks.hpp"
 
 #include <posekit/error.hpp>
@@ -34,15 +35,8 @@ struct Box {
 
 Box face_box(const Eigen::Ref<const Eigen::MatrixX3d>& vertices, const Eigen::Ref<const Eigen::MatrixX3i>& faces,
              int f) {
-  Box box;
-  for (int axis = 0; axis < 3; ++axis) {
-    const double a = vertices(faces(f, 0), axis);
-    const double b = vertices(faces(f, 1), axis);
-    const double c = vertices(faces(f, 2), axis);
-    box.min[axis] = std::min({a, b, c});
-    box.max[axis] = std::max({a, b, c});
-  }
-  return box;
+  const detail::FaceBounds bounds = detail::face_bounds(vertices, faces, f);
+  return {bounds.lower, bounds.upper};
 }
 
 // Faces whose box is wider than a cell are kept aside and checked against every query; the 95th

@@ -1,6 +1,6 @@
 #include "posekit/mesh_validation.hpp"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include "cgal/face_pair_test.hpp"
 
 #include <cmath>
 #include <string>
@@ -11,14 +11,8 @@
 namespace posekit {
 namespace {
 
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-
 bool is_finite_row(const Eigen::Ref<const Eigen::MatrixX3d>& vertices, Eigen::Index row) {
   return std::isfinite(vertices(row, 0)) && std::isfinite(vertices(row, 1)) && std::isfinite(vertices(row, 2));
-}
-
-Kernel::Point_3 point(const Eigen::Ref<const Eigen::MatrixX3d>& vertices, Eigen::Index row) {
-  return {vertices(row, 0), vertices(row, 1), vertices(row, 2)};
 }
 
 std::string plural(int count, const char* singular, const char* plural_form) {
@@ -30,6 +24,7 @@ std::string plural(int count, const char* singular, const char* plural_form) {
 MeshDefects find_mesh_defects(const Mesh& mesh) {
   const Eigen::Index vertex_count = mesh.vertices.rows();
   MeshDefects defects;
+  const detail::FacePairTest exact(mesh.vertices, mesh.faces);
   std::vector<char> referenced(static_cast<std::size_t>(vertex_count), 0);
   for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f) {
     const int a = mesh.faces(f, 0);
@@ -43,7 +38,7 @@ MeshDefects find_mesh_defects(const Mesh& mesh) {
     // The exact predicate cannot take nan or infinity; such a face is an error for validate_mesh anyway.
     if (!degenerate && is_finite_row(mesh.vertices, a) && is_finite_row(mesh.vertices, b) &&
         is_finite_row(mesh.vertices, c)) {
-      degenerate = CGAL::collinear(point(mesh.vertices, a), point(mesh.vertices, b), point(mesh.vertices, c));
+      degenerate = exact.degenerate(static_cast<int>(f));
     }
     if (degenerate) {
       if (defects.degenerate_face_count == 0) defects.first_degenerate_face = static_cast<int>(f);

@@ -1,5 +1,6 @@
 #include "mesh/polygon_soup.hpp"
 
+#include <array>
 #include <climits>
 
 #include "posekit/error.hpp"
@@ -14,11 +15,11 @@ Mesh mesh_from_soup(const PolygonSoup& soup, const std::string& file) {
   Mesh mesh;
   mesh.vertices.resize(static_cast<Eigen::Index>(vertex_count), 3);
   for (std::size_t v = 0; v < vertex_count; ++v) {
-    const SoupPoint& point = soup.points[v];
+    const std::array<double, 3>& point = soup.points[v];
     const auto row = static_cast<Eigen::Index>(v);
-    mesh.vertices(row, 0) = point.x();
-    mesh.vertices(row, 1) = point.y();
-    mesh.vertices(row, 2) = point.z();
+    mesh.vertices(row, 0) = point[0];
+    mesh.vertices(row, 1) = point[1];
+    mesh.vertices(row, 2) = point[2];
   }
   mesh.faces.resize(static_cast<Eigen::Index>(soup.polygons.size()), 3);
   for (std::size_t f = 0; f < soup.polygons.size(); ++f) {
@@ -39,21 +40,6 @@ Mesh mesh_from_soup(const PolygonSoup& soup, const std::string& file) {
     }
   }
   return mesh;
-}
-
-void soup_from_mesh(const Mesh& mesh, std::vector<SoupPoint>& points,
-                    std::vector<std::array<std::size_t, 3>>& triangles) {
-  points.clear();
-  points.reserve(static_cast<std::size_t>(mesh.vertices.rows()));
-  for (Eigen::Index v = 0; v < mesh.vertices.rows(); ++v) {
-    points.emplace_back(mesh.vertices(v, 0), mesh.vertices(v, 1), mesh.vertices(v, 2));
-  }
-  triangles.clear();
-  triangles.reserve(static_cast<std::size_t>(mesh.faces.rows()));
-  for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f) {
-    triangles.push_back({static_cast<std::size_t>(mesh.faces(f, 0)), static_cast<std::size_t>(mesh.faces(f, 1)),
-                         static_cast<std::size_t>(mesh.faces(f, 2))});
-  }
 }
 
 }  // namespace posekit::detail

@@ -1,9 +1,5 @@
 // read_mesh: the file's bytes are checked by the structure scan of their format, then read by CGAL's
 // polygon-soup reader, then CGAL's result is compared with what the scan counted and validated.
-#include <CGAL/IO/OBJ.h>
-#include <CGAL/IO/OFF.h>
-#include <CGAL/IO/PLY.h>
-
 #include <algorithm>
 #include <cerrno>
 #include <fstream>
@@ -78,7 +74,7 @@ detail::PolygonSoup read_obj(std::string text, const std::string& name) {
   std::istringstream stream(text);
   detail::PolygonSoup soup;
   run_cgal_reader("OBJ", name, [&] {
-    return CGAL::IO::read_OBJ(stream, soup.points, soup.polygons, CGAL::parameters::verbose(false));
+    return detail::read_obj_soup(stream, soup);
   });
   check_counts("OBJ", name, soup, scan.vertex_count, scan.face_lines.size());
   for (std::size_t f = 0; f < soup.polygons.size(); ++f) {
@@ -95,7 +91,7 @@ detail::PolygonSoup read_off(const std::string& text, const std::string& name) {
   const detail::SoupCounts counts = detail::scan_off(text, name);
   std::istringstream stream(text);
   detail::PolygonSoup soup;
-  run_cgal_reader("OFF", name, [&] { return CGAL::IO::read_OFF(stream, soup.points, soup.polygons); });
+  run_cgal_reader("OFF", name, [&] { return detail::read_off_soup(stream, soup); });
   check_counts("OFF", name, soup, counts.vertex_count, counts.face_count);
   return soup;
 }
@@ -105,7 +101,7 @@ detail::PolygonSoup read_ply(const std::string& bytes, const std::string& name) 
   std::istringstream stream(bytes, std::ios::in | std::ios::binary);
   detail::PolygonSoup soup;
   run_cgal_reader("PLY", name, [&] {
-    return CGAL::IO::read_PLY(stream, soup.points, soup.polygons, CGAL::parameters::verbose(false));
+    return detail::read_ply_soup(stream, soup);
   });
   check_counts("PLY", name, soup, counts.vertex_count, counts.face_count);
   return soup;

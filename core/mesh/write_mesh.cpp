@@ -1,17 +1,9 @@
 // write_mesh: CGAL's writers format the mesh in memory, then the bytes are written atomically.
-#include <CGAL/IO/OBJ.h>
-#include <CGAL/IO/OFF.h>
-#include <CGAL/IO/PLY.h>
-
-#include <array>
-#include <cmath>
-#include <limits>
 #include <sstream>
 #include <string>
-#include <vector>
 
 #include <posekit/atomic_file.hpp>
-#include "mesh/polygon_soup.hpp"
+#include "cgal/polygon_soup_io.hpp"
 #include "posekit/error.hpp"
 #include "posekit/mesh_io.hpp"
 
@@ -42,24 +34,17 @@ void write_mesh(const std::filesystem::path& file, const Mesh& mesh) {
   const MeshFormat format = mesh_format_from_extension(file);
   check_writable(mesh, name);
 
-  std::vector<detail::SoupPoint> points;
-  std::vector<std::array<std::size_t, 3>> triangles;
-  detail::soup_from_mesh(mesh, points, triangles);
-
-  // max_digits10 significant digits make the decimal text read back as the same double.
-  const auto precision = CGAL::parameters::stream_precision(std::numeric_limits<double>::max_digits10);
   std::ostringstream stream(std::ios::out | std::ios::binary);
   bool ok = false;
   switch (format) {
     case MeshFormat::obj:
-      ok = CGAL::IO::write_OBJ(stream, points, triangles, precision);
+      ok = detail::write_obj_soup(stream, mesh.vertices, mesh.faces);
       break;
     case MeshFormat::off:
-      ok = CGAL::IO::write_OFF(stream, points, triangles, precision);
+      ok = detail::write_off_soup(stream, mesh.vertices, mesh.faces);
       break;
     case MeshFormat::ply:
-      CGAL::IO::set_mode(stream, CGAL::IO::BINARY);
-      ok = CGAL::IO::write_PLY(stream, points, triangles, precision);
+      ok = detail::write_ply_soup(stream, mesh.vertices, mesh.faces);
       break;
   }
   if (!ok) throw InputError(name, 0, "cannot format the mesh for writing");

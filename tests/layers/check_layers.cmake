@@ -9,6 +9,7 @@ cmake_minimum_required(VERSION 3.25)
 if(NOT ROOT)
   message(FATAL_ERROR "check_layers: pass -DROOT=<source tree>")
 endif()
+get_filename_component(ROOT "${ROOT}" ABSOLUTE)  # the globs below need an absolute root
 include(${ROOT}/cmake/PosekitLayers.cmake)
 
 set(source_pattern "\\.(cpp|hpp|h|cu|cuh)$")

@@ -1,0 +1,72 @@
+#include "cgal/face_pair_test.hpp"
+
+#include "cgal/kernel.hpp"
+
+#include <CGAL/intersections.h>
+
+#include <array>
+
+namespace posekit::detail {
+namespace {
+
+using Segment = ExactKernel::Segment_3;
+using Triangle = ExactKernel::Triangle_3;
+
+std::array<int, 3> corners(const Eigen::Ref<const Eigen::MatrixX3i>& faces, int f) {
+  return {faces(f, 0), faces(f, 1), faces(f, 2)};
+}
+
+int unshared_corner(const std::array<bool, 3>& shared) { return !shared[0] ? 0 : (!shared[1] ? 1 : 2); }
+
+}  // namespace
+
+bool FacePairTest::degenerate(int f) const {
+  const std::array<int, 3> c = corners(faces_, f);
+  return CGAL::collinear(exact_point(vertices_, c[0]), exact_point(vertices_, c[1]), exact_point(vertices_, c[2]));
+}
+
+bool FacePairTest::intersect(int f, int g) const {
+  const std::array<int, 3> a = corners(faces_, f);
+  const std::array<int, 3> b = corners(faces_, g);
+  const auto point = [&](int vertex) { return exact_point(vertices_, vertex); };
+  const auto triangle = [&](const std::array<int, 3>& c) { return Triangle(point(c[0]), point(c[1]), point(c[2])); };
+  int shared_count = 0;
+  int first_shared_in_a = -1;
+  int first_shared_in_b = -1;
+  std::array<bool, 3> a_shared{false, false, false};
+  std::array<bool, 3> b_shared{false, false, false};
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      if (a[i] != b[j] || a_shared[i] || b_shared[j]) continue;
+      a_shared[i] = b_shared[j] = true;
+      if (shared_count++ == 0) {
+        first_shared_in_a = i;
+        first_shared_in_b = j;
+      }
+    }
+  }
+
+  if (shared_count >= 3) return true;  // the same triangle twice
+  if (shared_count == 2) {
+    // Sharing an edge: they overlap only when folded flat onto each other, i.e. the two opposite
+    // corners are coplanar with the edge and on the same side of it.
+    const int a_apex = unshared_corner(a_shared);
+    const int b_apex = unshared_corner(b_shared);
+    const ExactPoint p = point(a[(a_apex + 1) % 3]);
+    const ExactPoint q = point(a[(a_apex + 2) % 3]);
+    const ExactPoint r = point(a[a_apex]);
+    const ExactPoint s = point(b[b_apex]);
+    return CGAL::coplanar(p, q, r, s) && CGAL::coplanar_orientation(p, q, r, s) == CGAL::POSITIVE;
+  }
+  const Triangle ta = triangle(a);
+  const Triangle tb = triangle(b);
+  if (shared_count == 1) {
+    // Sharing one vertex: any further contact shows up on an edge opposite the shared vertex.
+    const Segment a_opposite(point(a[(first_shared_in_a + 1) % 3]), point(a[(first_shared_in_a + 2) % 3]));
+    const Segment b_opposite(point(b[(first_shared_in_b + 1) % 3]), point(b[(first_shared_in_b + 2) % 3]));
+    return CGAL::do_intersect(ta, b_opposite) || CGAL::do_intersect(tb, a_opposite);
+  }
+  return CGAL::do_intersect(ta, tb);
+}
+
+}  // namespace posekit::detail
