@@ -38,19 +38,27 @@ std::string stage_list(const CorrectionReport& report) {
   return list;
 }
 
-// Each stage starts from the candidate the one before it left, and the first candidate without a new
-// face comes from a stage whose pose was kept: `freed_by`, where the pose names one.
+// Each stage starts from the candidate the one before it left, and where the target has new faces,
+// the first candidate without one comes from a stage whose pose was kept: `freed_by`, where the pose
+// names one.
 void expect_stage_chain(const CorrectionReport& report, const std::string& freed_by) {
+  const StageReport* first = nullptr;
   const StageReport* previous = nullptr;
   const StageReport* freeing = nullptr;
   for (const StageReport& stage : report.stages) {
     if (!stage.ran) continue;
+    if (first == nullptr) first = &stage;
     if (previous != nullptr) {
       EXPECT_EQ(stage.new_faces_before, previous->new_faces_after) << stage.name << " after " << previous->name;
     }
     if (!stage.kept) EXPECT_EQ(stage.new_faces_after, stage.new_faces_before) << stage.name << " was not kept";
-    if (freeing == nullptr && stage.new_faces_after == 0) freeing = &stage;
+    if (freeing == nullptr && stage.new_faces_before > 0 && stage.new_faces_after == 0) freeing = &stage;
     previous = &stage;
+  }
+  ASSERT_NE(first, nullptr) << "no stage ran";
+  if (first->new_faces_before == 0) {
+    EXPECT_TRUE(freed_by.empty()) << "the target has no new face for " << freed_by << " to free";
+    return;
   }
   ASSERT_NE(freeing, nullptr) << "no stage freed the pose:" << stage_list(report);
   EXPECT_TRUE(freeing->kept) << freeing->name;
