@@ -5,6 +5,7 @@
 #include "rbf_kernels.hpp"
 
 #include "common/kernel_math.h"
+#include "common/rk45_counters.hpp"
 #include <posekit/error.hpp>
 
 #include <tbb/blocked_range.h>
@@ -16,12 +17,6 @@
 namespace posekit::cpu {
 namespace {
 
-static_assert(static_cast<int>(Rk45Status::ok) == PK_RK45_OK &&
-                  static_cast<int>(Rk45Status::max_steps) == PK_RK45_MAX_STEPS &&
-                  static_cast<int>(Rk45Status::step_underflow) == PK_RK45_STEP_UNDERFLOW &&
-                  static_cast<int>(Rk45Status::non_finite) == PK_RK45_NON_FINITE,
-              "Rk45Status and kernel_math.h disagree");
-
 Rk45ParticleStats integrate_particle(const CpuField& field, RbfSumKernel kernel,
                                      const Rk45Options& options, double* x) {
   pk_rk45_controller controller;
@@ -32,12 +27,8 @@ Rk45ParticleStats integrate_particle(const CpuField& field, RbfSumKernel kernel,
     field.value_at(kernel, point, derivative);
   };
   PK_RK45_INTEGRATE_PARTICLE(controller, x, evaluate);
-  Rk45ParticleStats stats;
-  stats.accepted_steps = controller.accepted_steps;
-  stats.rejected_steps = controller.rejected_steps;
-  stats.rhs_evaluations = controller.rhs_evaluations;
-  stats.status = static_cast<Rk45Status>(controller.status);
-  return stats;
+  return backends::particle_stats(controller.accepted_steps, controller.rejected_steps, controller.rhs_evaluations,
+                                  controller.status);
 }
 
 }  // namespace

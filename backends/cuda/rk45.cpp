@@ -7,18 +7,12 @@
 #include "cuda_kernels.hpp"
 #include "cuda_operations.hpp"
 
-#include "common/kernel_math.h"
+#include "common/rk45_counters.hpp"
 
 #include <algorithm>
 #include <cstdint>
 
 namespace posekit::cuda {
-
-static_assert(static_cast<int>(Rk45Status::ok) == PK_RK45_OK &&
-                  static_cast<int>(Rk45Status::max_steps) == PK_RK45_MAX_STEPS &&
-                  static_cast<int>(Rk45Status::step_underflow) == PK_RK45_STEP_UNDERFLOW &&
-                  static_cast<int>(Rk45Status::non_finite) == PK_RK45_NON_FINITE,
-              "Rk45Status and kernel_math.h disagree");
 
 std::vector<Rk45ParticleStats> integrate_rk45(CudaContext& context, const CudaField& field,
                                               Eigen::Ref<Eigen::MatrixX3d> positions,
@@ -67,12 +61,8 @@ std::vector<Rk45ParticleStats> integrate_rk45(CudaContext& context, const CudaFi
                  capacity, rows, 3, cudaMemcpyDeviceToHost);
     context.synchronize();
     for (Eigen::Index i = 0; i < rows; ++i) {
-      Rk45ParticleStats& s = stats[static_cast<std::size_t>(first + i)];
-      const std::int32_t* record = &chunk_stats[static_cast<std::size_t>(4 * i)];
-      s.accepted_steps = record[0];
-      s.rejected_steps = record[1];
-      s.rhs_evaluations = record[2];
-      s.status = static_cast<Rk45Status>(record[3]);
+      stats[static_cast<std::size_t>(first + i)] =
+          backends::particle_stats(&chunk_stats[static_cast<std::size_t>(4 * i)]);
     }
   }
   return stats;

@@ -9,18 +9,13 @@
 #include "vulkan_device.hpp"
 
 #include "common/kernel_math.h"
+#include "common/rk45_counters.hpp"
 #include <posekit/error.hpp>
 
 #include <string>
 
 namespace posekit::vulkan {
 namespace {
-
-static_assert(static_cast<int>(Rk45Status::ok) == PK_RK45_OK &&
-                  static_cast<int>(Rk45Status::max_steps) == PK_RK45_MAX_STEPS &&
-                  static_cast<int>(Rk45Status::step_underflow) == PK_RK45_STEP_UNDERFLOW &&
-                  static_cast<int>(Rk45Status::non_finite) == PK_RK45_NON_FINITE,
-              "Rk45Status and kernel_math.h disagree");
 
 constexpr std::uint32_t kMostRoundsPerSubmission = 16;
 
@@ -123,11 +118,7 @@ std::vector<Rk45ParticleStats> VulkanDevice::do_integrate_rk45(
       for (Eigen::Index i = 0; i < n; ++i) {
         const Rk45State& state = states[i];
         for (int k = 0; k < 3; ++k) positions(first + i, k) = state.position_time[k];
-        Rk45ParticleStats& s = stats[static_cast<std::size_t>(first + i)];
-        s.accepted_steps = state.counters[0];
-        s.rejected_steps = state.counters[1];
-        s.rhs_evaluations = state.counters[2];
-        s.status = static_cast<Rk45Status>(state.counters[3]);
+        stats[static_cast<std::size_t>(first + i)] = backends::particle_stats(state.counters);
       }
     }
   });
