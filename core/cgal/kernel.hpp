@@ -14,4 +14,7 @@ inline ExactPoint exact_point(const Eigen::Ref<const Eigen::MatrixX3d>& vertices
   return {vertices(row, 0), vertices(row, 1), vertices(row, 2)};
 }
 
+/// A row vector as a CGAL point.
+inline ExactPoint exact_point(const Eigen::RowVector3d& point) { return {point(0), point(1), point(2)}; }
+
 }  // namespace posekit::detail
