@@ -39,8 +39,8 @@ Box face_box(const Eigen::Ref<const Eigen::MatrixX3d>& vertices, const Eigen::Re
   return {bounds.lower, bounds.upper};
 }
 
-// Faces whose box is wider than a cell are kept aside and checked against every query; the 95th
-// percentile of the widths keeps those few while a query still looks at no more than 27 cells.
+// The finest cell is the 95th percentile of the faces' box widths: most faces lie in it, and a query
+// for a face of common size looks at no more than 27 cells; the wider few go to coarser levels.
 constexpr double kCellQuantile = 0.95;
 // Cell indices are packed into 21 bits per axis, counted from the first pose's lower corner; moves
 // beyond that range clamp to the border cells, which stays correct (queries clamp alike).
@@ -58,19 +58,44 @@ void sort_unique(FacePairs& pairs) {
 
 // Items (faces) bucketed by the grid cell of their box's lower corner: an item whose box is at most a
 // cell wide overlaps a query box only if its lower corner lies within one cell below the query's.
+// Items wider than a cell go to a coarser level of cells kCoarserFactor times as wide, and so on:
+// kept in one list instead, the few percent of wide faces of a large mesh were scanned by every query
+// and cost more than the rest of it.
 class Buckets {
  public:
-  Buckets(double cell, const std::array<double, 3>& origin) : cell_(cell), origin_(origin) {}
+  Buckets(double cell, const std::array<double, 3>& origin, int level = 0)
+      : cell_(cell), origin_(origin), level_(level) {}
+  Buckets(const Buckets& other)
+      : cell_(other.cell_),
+        origin_(other.origin_),
+        level_(other.level_),
+        cells_(other.cells_),
+        oversized_(other.oversized_),
+        coarser_(other.coarser_ ? std::make_unique<Buckets>(*other.coarser_) : nullptr) {}
+  Buckets& operator=(const Buckets& other) {
+    if (this != &other) *this = Buckets(other);
+    return *this;
+  }
+  Buckets(Buckets&&) noexcept = default;
+  Buckets& operator=(Buckets&&) noexcept = default;
+  ~Buckets() = default;
 
   void insert(int item, const Box& box) {
-    if (box.extent() > cell_) {
+    if (box.extent() <= cell_) {
+      cells_[key_of(box)].push_back(item);
+    } else if (level_ + 1 < kLevels) {
+      if (!coarser_) coarser_ = std::make_unique<Buckets>(cell_ * kCoarserFactor, origin_, level_ + 1);
+      coarser_->insert(item, box);
+    } else {
       oversized_.push_back(item);
-      return;
     }
-    cells_[key_of(box)].push_back(item);
   }
 
   void erase(int item, const Box& box) {
+    if (box.extent() > cell_ && level_ + 1 < kLevels) {
+      if (coarser_) coarser_->erase(item, box);
+      return;
+    }
     std::vector<int>& bucket = box.extent() > cell_ ? oversized_ : cells_[key_of(box)];
     const auto found = std::find(bucket.begin(), bucket.end(), item);
     if (found != bucket.end()) {
@@ -110,9 +135,15 @@ class Buckets {
       }
     }
     visit_bucket(oversized_);
+    if (coarser_) coarser_->query(box, boxes, visit);
   }
 
  private:
+  // Each level's cells are this many times as wide as the finer level's; past the last level, wide
+  // items are kept in a list (a face across the whole pose).
+  static constexpr double kCoarserFactor = 4.0;
+  static constexpr int kLevels = 8;
+
   // Index of `coordinate` along `axis`, clamped to the grid.
   std::int64_t index(int axis, double coordinate) const {
     const double steps = std::floor((coordinate - origin_[axis]) / cell_);
@@ -127,8 +158,10 @@ class Buckets {
 
   double cell_;
   std::array<double, 3> origin_;
+  int level_;
   std::unordered_map<std::uint64_t, std::vector<int>> cells_;
   std::vector<int> oversized_;
+  std::unique_ptr<Buckets> coarser_;
 };
 
 // A cell as wide as most faces' boxes, from the corner of the pose's bounding box.
@@ -198,6 +231,8 @@ class SelfIntersectionTracker::Grid {
     // The moved faces among themselves, through buckets of their own new boxes (by position in `moved`).
     Buckets among_moved = buckets_for(changed, moved_boxes);
     for (size_t i = 0; i < moved.size(); ++i) among_moved.insert(static_cast<int>(i), moved_boxes[i]);
+    std::vector<char> is_moved(boxes.size(), 0);
+    for (int f : moved) is_moved[static_cast<size_t>(f)] = 1;
 
     tbb::enumerable_thread_specific<FacePairs> found;
     const auto test_one = [&](size_t i) {
@@ -208,7 +243,7 @@ class SelfIntersectionTracker::Grid {
         return;
       }
       buckets.query(moved_boxes[i], boxes, [&](int g) {
-        if (degenerate[static_cast<size_t>(g)] != 0 || std::binary_search(moved.begin(), moved.end(), g)) return;
+        if (degenerate[static_cast<size_t>(g)] != 0 || is_moved[static_cast<size_t>(g)] != 0) return;
         if (test.intersect(f, g)) out.emplace_back(std::min(f, g), std::max(f, g));
       });
       among_moved.query(moved_boxes[i], moved_boxes, [&](int j) {

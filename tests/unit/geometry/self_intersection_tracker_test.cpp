@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 namespace posekit {
@@ -59,6 +60,35 @@ TEST_F(SelfIntersectionTrackerTest, AgreesWithTheWholeMeshTestAfterLocalMoves) {
     }
   }
   EXPECT_GT(changed_answers, 10);  // the moves did change what intersects
+}
+
+// Faces of every size from the start (vertices pulled a little, far and across the whole arm, so
+// the tracker's grid holds them at several levels), then moved back one by one and pulled again
+// elsewhere: the probes and updates still agree with the whole-mesh test.
+TEST_F(SelfIntersectionTrackerTest, AgreesWithTheWholeMeshTestOverFacesOfEverySize) {
+  const Eigen::MatrixX3i& faces = arm_->faces();
+  Eigen::MatrixX3d start = arm_->pose(1);
+  std::mt19937 random(11);
+  std::uniform_int_distribution<int> pick(0, static_cast<int>(start.rows()) - 1);
+  const Eigen::RowVector3d extent = start.colwise().maxCoeff() - start.colwise().minCoeff();
+  std::vector<int> pulled;
+  for (int k = 0; k < 12; ++k) {
+    const int v = pick(random);
+    const double reach = std::pow(4.0, k % 6) * 0.01;  // from a hundredth of the arm to ten times it
+    start.row(v) += reach * extent.cwiseProduct(Eigen::RowVector3d(1.0, -0.5, 0.25));
+    pulled.push_back(v);
+  }
+  SelfIntersectionTracker tracker(start, faces);
+  ASSERT_EQ(tracker.pairs(), self_intersecting_face_pairs(start, faces));
+  for (size_t step = 0; step < pulled.size(); ++step) {
+    Eigen::MatrixX3d candidate = tracker.vertices();
+    candidate.row(pulled[step]) = arm_->pose(1).row(pulled[step]);
+    candidate.row(pick(random)) += 0.3 * extent;
+    const FacePairs expected = self_intersecting_face_pairs(candidate, faces);
+    ASSERT_EQ(tracker.pairs_if(candidate), expected) << "step " << step;
+    tracker.update(candidate);
+    ASSERT_EQ(tracker.pairs(), expected) << "step " << step;
+  }
 }
 
 TEST_F(SelfIntersectionTrackerTest, CopiesAreIndependent) {
