@@ -164,7 +164,7 @@ class ContactSeparationStage final : public RepairStage {
   ContactSeparationStage(std::shared_ptr<SeparationCache> cache, bool early)
       : RepairStage({"contact-separation",
                      "separate the target's own contacts where the correction strays from the target or faces remain"},
-                    scope_bit(CorrectionScope::whole_pose)),
+                    scope_bit(CorrectionScope::whole_pose) | scope_bit(CorrectionScope::stretch_retry)),
         cache_(std::move(cache)),
         early_(early) {}
 

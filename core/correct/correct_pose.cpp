@@ -134,7 +134,7 @@ Eigen::MatrixX3d correct_in_scope(const Eigen::Ref<const Eigen::MatrixX3d>& refe
   const Eigen::MatrixX3d target_n = normalization.apply(target);
   // Nested runs name no vertex of the whole pose.
   CorrectionOptions scoped = options;
-  if (scope != CorrectionScope::whole_pose) scoped.excluded_vertices.clear();
+  if (scope != CorrectionScope::whole_pose && scope != CorrectionScope::stretch_retry) scoped.excluded_vertices.clear();
   CorrectionContext context = make_context(reference_n, target_n, faces, device, scoped, scope, progress);
   if (allowed != nullptr) {
     context.reference_intersecting = *allowed;

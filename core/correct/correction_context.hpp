@@ -19,14 +19,15 @@
 
 namespace posekit::detail {
 
-/// Where a correction runs. Nested runs (a region on its own, a leg through the halfway pose) leave
-/// out the stages that would nest again or that the whole pose runs after them; each stage says
-/// where it runs (RepairStage::scopes), so no caller edits a copy of the options.
-enum class CorrectionScope { whole_pose = 1, region = 2, leg = 4 };
+/// Where a correction runs. Nested runs (a region on its own, a leg through the halfway pose, the
+/// whole pose again for less stretch) leave out the stages that would nest again, that the whole
+/// pose runs after them or that cost more than they can win there; each stage says where it runs
+/// (RepairStage::scopes), so no caller edits a copy of the options.
+enum class CorrectionScope { whole_pose = 1, region = 2, leg = 4, stretch_retry = 8 };
 
 /// A set of scopes, as a bit mask of CorrectionScope values.
 using ScopeSet = unsigned;
-constexpr ScopeSet kEveryScope = 7;
+constexpr ScopeSet kEveryScope = 15;
 constexpr ScopeSet scope_bit(CorrectionScope scope) { return static_cast<ScopeSet>(scope); }
 
 /// The field correction's outcome, which later stages build on.

@@ -37,7 +37,8 @@ class LocalCorrectionStage final : public RepairStage {
  public:
   LocalCorrectionStage()
       : RepairStage({"local-correction", "correct each region that still intersects again, as a mesh of its own"},
-                    scope_bit(CorrectionScope::whole_pose) | scope_bit(CorrectionScope::leg)) {}
+                    scope_bit(CorrectionScope::whole_pose) | scope_bit(CorrectionScope::leg) |
+                        scope_bit(CorrectionScope::stretch_retry)) {}
 
   std::optional<Candidate> run(const Candidate& current, CorrectionContext& context, StageReport& report) override {
     Candidate corrected = current;

@@ -26,7 +26,7 @@ class StretchReliefStage final : public RepairStage {
   StretchReliefStage()
       : RepairStage({"stretch-relief",
                      "give regions the correction stretched the target's shape where that adds no intersection"},
-                    scope_bit(CorrectionScope::whole_pose)) {}
+                    scope_bit(CorrectionScope::whole_pose) | scope_bit(CorrectionScope::stretch_retry)) {}
 
   bool wanted(const Candidate& current, const CorrectionContext& context) const override {
     return context.stretch.count(current.pose()) > 0;

@@ -3,7 +3,8 @@
 // intersects, its path lines can bend parts through each other that a wider collar holds apart;
 // the costly stages after it then work on what the field should have freed. Where faces remain or
 // the surface tore, the correction runs once more with the collar that freed every pose we
-// measured (docs/correct.md), and the better of the two is kept.
+// measured (docs/correct.md), and the better of the two is kept. Where only the tearing calls for
+// it, the run leaves out the halfway legs.
 #include "correct/nested_correction.hpp"
 #include "correct/repair_stage.hpp"
 
@@ -34,8 +35,12 @@ class WiderCollarStage final : public RepairStage {
   std::optional<Candidate> run(const Candidate& current, CorrectionContext& context, StageReport& report) override {
     CorrectionOptions wider = context.options;
     wider.collar_rings = kWideCollarRings;
-    const Eigen::MatrixX3d corrected = correct_in_scope(context.reference, context.target, context.faces,
-                                                        context.device, wider, CorrectionScope::whole_pose);
+    // On a candidate already free, only a free proposal can win, by its stretch: the halfway legs,
+    // which free the most entangled poses at the cost of two more corrections, are left out there.
+    const CorrectionScope scope =
+        current.new_face_count() == 0 ? CorrectionScope::stretch_retry : CorrectionScope::whole_pose;
+    const Eigen::MatrixX3d corrected =
+        correct_in_scope(context.reference, context.target, context.faces, context.device, wider, scope);
     // The proposal's own count: the nested run need not measure its result a second time.
     Candidate proposal = whole_pose_proposal(current, corrected, report);
     const int new_faces = proposal.new_face_count();

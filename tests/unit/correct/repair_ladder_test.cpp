@@ -139,6 +139,10 @@ TEST(RepairLadder, NestedScopesLeaveOutTheirStages) {
   EXPECT_TRUE(runs_in("rollback", CorrectionScope::region));
   EXPECT_FALSE(runs_in("wider-collar", CorrectionScope::leg));
   EXPECT_FALSE(runs_in("wider-collar", CorrectionScope::region));
+  // The wider collar's run on a pose already free: every stage but the halfway legs and itself.
+  for (const std::string& name : kStageNames) {
+    EXPECT_EQ(runs_in(name, CorrectionScope::stretch_retry), name != "halfway" && name != "wider-collar") << name;
+  }
 }
 
 // A whole correction reports every stage of the ladder in order, with what it did.
