@@ -65,7 +65,7 @@ set(POSEKIT_LAYER_interpolate_HEADERS edge_space interpolate interpolation_error
 set(POSEKIT_LAYER_interpolate_USES geometry)
 
 set(POSEKIT_LAYER_correct_FOLDERS core/correct)
-set(POSEKIT_LAYER_correct_HEADERS correct rbf_fitting poisson_interpolation)
+set(POSEKIT_LAYER_correct_HEADERS correct correct_sequence rbf_fitting poisson_interpolation)
 set(POSEKIT_LAYER_correct_USES geometry device interpolate)
 
 set(POSEKIT_LAYER_blend_FOLDERS core/blend)

@@ -76,7 +76,7 @@ INSTANTIATE_TEST_SUITE_P(Corpus, MalformedInput, ::testing::ValuesIn(malformed_c
 TEST(MalformedCorpus, HasAtLeastTwentyCases) { EXPECT_GE(malformed_cases().size(), 20u); }
 
 TEST(Cli, EverySubcommandHasHelp) {
-  for (const char* command : {"devices", "check", "convert", "generate", "demo", "correct", "interpolate"}) {
+  for (const char* command : {"devices", "check", "convert", "generate", "demo", "correct", "correct-sequence", "interpolate"}) {
     const CommandResult result = run_posekit({command, "--help"});
     EXPECT_EQ(result.exit_status, 0) << command << ": " << result.err;
     EXPECT_NE(result.out.find("Usage"), std::string::npos) << command;

@@ -1,6 +1,7 @@
 #include "command_runner.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -34,7 +35,9 @@ std::vector<std::string> CommandResult::err_lines() const {
   return lines;
 }
 
-CommandResult run_posekit(const std::vector<std::string>& arguments) {
+CommandResult run_posekit(const std::vector<std::string>& arguments) { return run_posekit_until(arguments, {}); }
+
+CommandResult run_posekit_until(const std::vector<std::string>& arguments, const std::function<bool()>& stop) {
   TemporaryDirectory capture;
   const std::string out_path = (capture.path() / "stdout").string();
   const std::string err_path = (capture.path() / "stderr").string();
@@ -56,7 +59,19 @@ CommandResult run_posekit(const std::vector<std::string>& arguments) {
   if (spawn_error != 0) throw std::runtime_error(std::string("cannot start ") + POSEKIT_CLI_PATH);
 
   int wait_status = 0;
-  waitpid(child, &wait_status, 0);
+  if (stop) {
+    // Polls the condition while the child runs; kills it the first time the condition holds.
+    while (waitpid(child, &wait_status, WNOHANG) == 0) {
+      if (stop()) {
+        kill(child, SIGKILL);
+        waitpid(child, &wait_status, 0);
+        break;
+      }
+      usleep(2000);
+    }
+  } else {
+    waitpid(child, &wait_status, 0);
+  }
   CommandResult result;
   if (WIFEXITED(wait_status)) {
     result.exit_status = WEXITSTATUS(wait_status);

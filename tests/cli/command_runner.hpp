@@ -1,6 +1,7 @@
 // Runs the posekit executable in a child process and captures what it printed.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -16,5 +17,8 @@ struct CommandResult {
 
 /// Runs `posekit ARGS...` (the build's own binary) with stdin closed.
 CommandResult run_posekit(const std::vector<std::string>& arguments);
+
+/// The same, killed (SIGKILL, exit status 137) as soon as `stop` returns true: an interrupted run.
+CommandResult run_posekit_until(const std::vector<std::string>& arguments, const std::function<bool()>& stop);
 
 }  // namespace posekit::testing

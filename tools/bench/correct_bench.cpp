@@ -7,9 +7,12 @@
 //    elephant-10 against elephant-01 and crane frames against crane-0014, when ../shared/data is
 //    present (skipped with a message otherwise).
 //  - BM_SeparateContacts: the separation of cat-07's own contacts alone.
+//  - BM_CorrectCraneSequence: crane-0000 ... crane-0174 as one animation against crane-0014
+//    (correct_sequence), with its counts and coherence figures; carry=0 corrects every frame alone.
 // Counters: the seconds of the field's steps and of each repair stage that ran, the centers, the
 // region's vertices and the new intersecting faces of the result.
 #include <posekit/correct.hpp>
+#include <posekit/correct_sequence.hpp>
 #include <posekit/cpu_device.hpp>
 #include <posekit/demo_shape.hpp>
 #include <posekit/mesh_io.hpp>
@@ -20,6 +23,7 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include <filesystem>
 #include <memory>
@@ -123,6 +127,39 @@ const bool registered = [] {
   }
   return true;
 }();
+
+// range(0): 1 to carry a frame's correction to the next, 0 to correct every frame alone.
+void BM_CorrectCraneSequence(benchmark::State& state) {
+  std::vector<Eigen::MatrixX3d> frames;
+  for (int frame = 0; frame < 175; ++frame) {
+    char name[48];
+    std::snprintf(name, sizeof name, "crane-sequence/crane-%04d.obj", frame);
+    if (!std::filesystem::exists(shared_data() / name)) {
+      state.SkipWithError((std::string("shared pose data not found: ") + name).c_str());
+      return;
+    }
+    frames.push_back(read_mesh(shared_data() / name).vertices);
+  }
+  const Mesh reference = read_mesh(shared_data() / "crane-sequence/crane-0014.obj");
+  const std::unique_ptr<Device> device = make_cpu_device();
+  SequenceCorrectionOptions options;
+  options.carry_corrections = state.range(0) == 1;
+  SequenceReport report;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(correct_sequence(reference.vertices, frames, reference.faces, *device, options, &report));
+  }
+  state.counters["frames"] = report.frames;
+  state.counters["corrected"] = report.corrected_frames;
+  state.counters["carried"] = report.carried_frames;
+  state.counters["with_new_faces"] = report.frames_with_new_faces;
+  state.counters["correction_s"] = report.correction_seconds;
+  state.counters["coherence_s"] = report.coherence_seconds;
+  state.counters["accel_p99_ratio"] = report.coherence.acceleration_p99_ratio;
+  state.counters["accel_max_ratio"] = report.coherence.acceleration_max_ratio;
+  state.counters["offset_change"] = report.coherence.largest_offset_change;
+  state.counters["offset_change_alone"] = report.coherence.largest_offset_change_alone;
+}
+BENCHMARK(BM_CorrectCraneSequence)->ArgName("carry")->Arg(1)->Arg(0)->Unit(benchmark::kSecond)->Iterations(1);
 
 // The stage that frees the most entangled cat target, on its own.
 void BM_SeparateContacts(benchmark::State& state) {

@@ -11,6 +11,7 @@ void add_convert_command(CLI::App& app, int& exit_status);
 void add_generate_command(CLI::App& app, int& exit_status);
 void add_demo_command(CLI::App& app, int& exit_status);
 void add_correct_command(CLI::App& app, int& exit_status);
+void add_correct_sequence_command(CLI::App& app, int& exit_status);
 void add_interpolate_command(CLI::App& app, int& exit_status);
 void add_deform_command(CLI::App& app, int& exit_status);
 void add_register_command(CLI::App& app, int& exit_status);

@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   posekit::cli::add_devices_command(app, exit_status);
   posekit::cli::add_check_command(app, exit_status);
   posekit::cli::add_correct_command(app, exit_status);
+  posekit::cli::add_correct_sequence_command(app, exit_status);
   posekit::cli::add_interpolate_command(app, exit_status);
   posekit::cli::add_deform_command(app, exit_status);
   posekit::cli::add_register_command(app, exit_status);
