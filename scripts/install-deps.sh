@@ -11,6 +11,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   mesa-vulkan-drivers libvulkan-dev glslang-tools vulkan-validationlayers spirv-tools
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-distributed
 )
 
 missing=()

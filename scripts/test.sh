@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs what posekit needs, builds everything and runs every test suite:
-# the release build (unit, pipeline, conformance, command-line tests) and the malformed-input corpus
+# the release build (unit, pipeline, conformance, command-line and Python tests) and the malformed-input corpus
 # again under AddressSanitizer and UBSan.
 set -euo pipefail
 cd "$(dirname "$0")/.."

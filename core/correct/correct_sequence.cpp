@@ -58,7 +58,7 @@ int new_face_count(const Eigen::Ref<const Eigen::MatrixX3d>& pose, const Eigen::
 // Gaussian weights of frames t - radius ... t + radius.
 std::vector<double> gaussian_weights(double sigma) {
   if (sigma <= 0.0) return {1.0};
-  const int radius = static_cast<int>(std::ceil(3.0 * sigma));
+  const int radius = blend_radius(sigma);
   std::vector<double> weights(static_cast<size_t>(2 * radius + 1));
   for (int k = -radius; k <= radius; ++k) {
     weights[static_cast<size_t>(k + radius)] = std::exp(-0.5 * (k * k) / (sigma * sigma));
@@ -127,6 +127,10 @@ void carry_previous(int t, const std::vector<Eigen::MatrixX3d>& frames, const st
 double ratio(double value, double base) { return base > 0.0 ? value / base : (value > 0.0 ? INFINITY : 1.0); }
 
 }  // namespace
+
+int blend_radius(double smoothing_frames) {
+  return smoothing_frames > 0.0 ? static_cast<int>(std::ceil(3.0 * smoothing_frames)) : 0;
+}
 
 std::vector<FrameCorrection> correct_sequence(const Eigen::Ref<const Eigen::MatrixX3d>& reference,
                                               const std::vector<Eigen::MatrixX3d>& frames,
@@ -228,7 +232,13 @@ std::vector<FrameCorrection> correct_sequence(const Eigen::Ref<const Eigen::Matr
     }
     if (!any) {
       frame.vertices = frames[index];
-      frame.own_share = moved[index] ? 1.0 : 0.0;
+      return;
+    }
+    if (weights.size() == 1) {
+      // No blend: the frame's own correction exactly (target + (own - target) may round differently).
+      frame.vertices = own[index];
+      frame.own_share = 1.0;
+      frame.new_faces = frame.corrected ? new_face_count(own[index], faces, reference_faces) : 0;
       return;
     }
     blended /= total;

@@ -18,3 +18,14 @@ if(NOT step_output MATCHES "^0 self-intersecting faces" OR NOT step_output MATCH
   message(FATAL_ERROR "unexpected consumer output:\n${step_output}")
 endif()
 message(STATUS "consumer output:\n${step_output}")
+
+# The Python package, where it was built: importable from the prefix, forwarding to the prefix's tool.
+if(PYTHON AND EXISTS ${PREFIX}/${PYTHON_PACKAGES}/posekit)
+  run_step(${CMAKE_COMMAND} -E env PYTHONPATH=${PREFIX}/${PYTHON_PACKAGES}
+           ${PYTHON} -c "import posekit; assert any(d['name'] == 'cpu' for d in posekit.devices())")
+  run_step(${CMAKE_COMMAND} -E env PYTHONPATH=${PREFIX}/${PYTHON_PACKAGES} ${PYTHON} -m posekit --version)
+  if(NOT step_output MATCHES "^posekit ")
+    message(FATAL_ERROR "python3 -m posekit --version printed:\n${step_output}")
+  endif()
+  message(STATUS "Python package imported from ${PREFIX}/${PYTHON_PACKAGES}")
+endif()

@@ -6,14 +6,20 @@
 #include <posekit/laplace_beltrami.hpp>
 #include <posekit/mesh_io.hpp>
 
+#include <algorithm>
+
 namespace posekit::cli {
 
 void add_blend_options(CLI::App* command, BlendCommandOptions& options) {
-  BlendOptions& b = options.blend;
   command->add_option("--examples", options.examples,
                       "Example poses of one connectivity; the first is the reference for weights and clusters")
       ->required()
       ->expected(1, -1);
+  add_blend_tuning_options(command, options);
+}
+
+void add_blend_tuning_options(CLI::App* command, BlendCommandOptions& options) {
+  BlendOptions& b = options.blend;
   command->add_option("--weights", options.weights,
                       "Skinning weights (one row of numbers per vertex) instead of Laplace-Beltrami eigenfunctions");
   command->add_option("--eigenfunctions", b.eigenfunctions, "Laplace-Beltrami eigenfunctions used as weights")
@@ -121,6 +127,48 @@ nlohmann::json deformation_json(const BlendResult& result, const PoseSet& exampl
   json["closest_example"] = result.closest_example >= 0 ? nlohmann::json(examples.pose_name(result.closest_example))
                                                         : nlohmann::json(nullptr);
   return json;
+}
+
+void add_scan_fit_options(CLI::App* command, ScanFitOptions& f) {
+  command->add_option("--icp-iterations", f.iterations, "Rounds of non-rigid ICP")
+      ->check(CLI::Range(0, 10000))
+      ->capture_default_str();
+  command->add_option("--scan-points", f.max_scan_points, "Scan points used as constraints per round")
+      ->check(CLI::Range(1, 100000000))
+      ->capture_default_str();
+  command->add_option("--scan-weight", f.scan_weight, "Weight of a scan point against a feature point")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command->add_option("--normal-angle", f.max_normal_angle_degrees, "Largest angle between matched normals, degrees")
+      ->check(CLI::Range(1e-6, 180.0))
+      ->capture_default_str();
+  command->add_option("--rejection-factor", f.rejection_factor, "Drop matches farther than this times the median")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+}
+
+void registration_json(const ScanRegistration& registration, const PoseSet& examples, const BlendedDeformer& deformer,
+                       nlohmann::json& report) {
+  nlohmann::json rounds = nlohmann::json::array();
+  for (const ScanFitIteration& it : registration.iterations) {
+    rounds.push_back({{"matches", it.matches},
+                      {"median_distance", it.median_distance},
+                      {"energy", it.energy},
+                      {"seconds", it.seconds}});
+  }
+  const Eigen::VectorXd& d = registration.distances;
+  report["setup"] = setup_json(deformer.setup_report());
+  report["initial"] = deformation_json(registration.initial, examples);
+  report["deformation"] = deformation_json(registration.deformation, examples);
+  report["icp"] = rounds;
+  std::vector<double> sorted(d.data(), d.data() + d.size());
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+  report["correspondence_of_scan_vertices"] = {
+      {"mesh_vertex", std::vector<int>(registration.correspondence.data(),
+                                       registration.correspondence.data() + registration.correspondence.size())},
+      {"distance", std::vector<double>(d.data(), d.data() + d.size())},
+      {"median_distance", sorted.empty() ? 0.0 : sorted[sorted.size() / 2]},
+      {"max_distance", d.size() > 0 ? d.maxCoeff() : 0.0}};
 }
 
 }  // namespace posekit::cli

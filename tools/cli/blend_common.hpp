@@ -6,6 +6,7 @@
 #include <posekit/blended_deformation.hpp>
 #include <posekit/feature_correspondence.hpp>
 #include <posekit/mesh.hpp>
+#include <posekit/partial_registration.hpp>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -26,6 +27,9 @@ struct BlendCommandOptions {
 /// Adds --examples, --weights and the deformer's tuning options to `command`.
 void add_blend_options(CLI::App* command, BlendCommandOptions& options);
 
+/// The same without --examples (for callers that hold the examples already).
+void add_blend_tuning_options(CLI::App* command, BlendCommandOptions& options);
+
 /// The examples, read and checked (same connectivity; the first one fit to carry the weights: a
 /// degenerate reference is an InputError naming its file).
 PoseSet read_examples(const BlendCommandOptions& options);
@@ -41,5 +45,13 @@ BlendResult deform_to_points(BlendedDeformer& deformer, PointConstraints& constr
 /// JSON of the precomputation and of one deformation.
 nlohmann::json setup_json(const BlendSetupReport& setup);
 nlohmann::json deformation_json(const BlendResult& result, const PoseSet& examples);
+
+/// Adds register's non-rigid ICP options (--icp-iterations, --scan-points, ...) to `command`.
+void add_scan_fit_options(CLI::App* command, ScanFitOptions& fit);
+
+/// Fills `report` with the registration's setup, initial and final deformation, ICP rounds and the
+/// mesh vertex matched to every scan vertex.
+void registration_json(const ScanRegistration& registration, const PoseSet& examples, const BlendedDeformer& deformer,
+                       nlohmann::json& report);
 
 }  // namespace posekit::cli

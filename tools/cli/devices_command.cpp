@@ -1,3 +1,4 @@
+#include "backend_status_json.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 
@@ -8,21 +9,6 @@
 
 namespace posekit::cli {
 namespace {
-
-nlohmann::json to_json(const BackendStatus& status) {
-  nlohmann::json entry{{"name", status.name}, {"state", to_string(status.state)}};
-  if (status.state == BackendState::available) {
-    entry["device"] = status.info.name;
-    entry["driver"] = status.info.driver;
-    entry["fp64"] = status.info.fp64;
-    entry["emulated_on_cpu"] = status.info.emulated_on_cpu;
-    entry["compute_units"] = status.info.compute_units;
-    entry["max_buffer_bytes"] = status.info.max_buffer_bytes;
-  } else {
-    entry["reason"] = status.reason;
-  }
-  return entry;
-}
 
 void print_table(const std::vector<BackendStatus>& statuses) {
   std::cout << std::left << std::setw(8) << "backend" << std::setw(13) << "state"
@@ -51,7 +37,7 @@ void add_devices_command(CLI::App& app, int& exit_status) {
       const std::vector<BackendStatus> statuses = list_backends();
       if (*json) {
         nlohmann::json list = nlohmann::json::array();
-        for (const BackendStatus& status : statuses) list.push_back(to_json(status));
+        for (const BackendStatus& status : statuses) list.push_back(backend_status_json(status));
         print_json(nlohmann::json{{"backends", list}});
       } else {
         print_table(statuses);

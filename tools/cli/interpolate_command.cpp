@@ -1,5 +1,6 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "interpolation_flags.hpp"
 
 #include <posekit/error.hpp>
 #include <posekit/interpolate.hpp>
@@ -18,11 +19,11 @@ struct InterpolateCommandOptions {
   std::vector<std::string> poses;
   std::vector<std::string> weights;
   std::string output;
-  std::string method = "mixit";
   std::string segmentation;
   std::string save_segmentation;
   std::string report;
-  InterpolationOptions interpolation;
+  InterpolationOptions interpolation;  // from the flags, with the segmentation read
+  InterpolationFlags flags;
 };
 
 // A usage error: one line on stderr and exit status 2, like any other command-line mistake.
@@ -78,18 +79,6 @@ std::string output_name(const std::string& pattern, size_t index, size_t count) 
   return name;
 }
 
-nlohmann::json percentiles_json(const ErrorPercentiles& p) {
-  return {{"max", p.max}, {"p99.9", p.p999}, {"p99", p.p99}};
-}
-
-nlohmann::json error_json(const InterpolationError& error) {
-  return {{"edge_length_relative", percentiles_json(error.edge_length)},
-          {"dihedral_degrees", percentiles_json(error.dihedral_degrees)},
-          {"collapsed_faces", error.collapsed_faces},
-          {"folded_edges", error.folded_edges},
-          {"finite", error.finite}};
-}
-
 // Everything that depends only on the command line, checked before any file is read: weight vectors.
 std::vector<Eigen::VectorXd> checked_weights(const InterpolateCommandOptions& options) {
   const int pose_count = static_cast<int>(options.poses.size());
@@ -103,7 +92,7 @@ std::vector<Eigen::VectorXd> checked_weights(const InterpolateCommandOptions& op
 }
 
 void run_interpolate(InterpolateCommandOptions options, const std::vector<Eigen::VectorXd>& weights) {
-  options.interpolation.method = interpolation_method_from_string(options.method);
+  options.interpolation = interpolation_options(options.flags);
   {
     std::vector<std::string> outputs;
     for (size_t i = 0; i < weights.size(); ++i) {
@@ -134,20 +123,9 @@ void run_interpolate(InterpolateCommandOptions options, const std::vector<Eigen:
       results.push_back(interpolator.interpolate(weights[i], &step));
       const InterpolationError error = interpolator.error(results.back(), weights[i]);
       if (!error.finite) throw Error("the interpolation for weights '" + options.weights[i] + "' is not finite");
-      output_reports.push_back(
-          {{"file", outputs[i]},
-           {"weights", std::vector<double>(weights[i].data(), weights[i].data() + weights[i].size())},
-           {"gauss_newton_iterations", step.gauss_newton_iterations},
-           {"error", error_json(error)},
-           {"seconds",
-            {{"blend", step.seconds.blend},
-             {"joints", step.seconds.joints},
-             {"alignment", step.seconds.alignment},
-             {"stitching", step.seconds.stitching},
-             {"refinement", step.seconds.refinement},
-             {"projection", step.seconds.projection},
-             {"placement", step.seconds.placement},
-             {"total", step.seconds.total}}}});
+      nlohmann::json entry = interpolation_step_json(weights[i], step, error);
+      entry["file"] = outputs[i];
+      output_reports.push_back(std::move(entry));
     }
     // Outputs only once every one of them is computed.
     const Eigen::MatrixX3i& faces = interpolator.poses().faces();
@@ -158,7 +136,7 @@ void run_interpolate(InterpolateCommandOptions options, const std::vector<Eigen:
     if (!options.report.empty()) {
       const InterpolationOptions& used = interpolator.options();
       const nlohmann::json report{
-          {"method", options.method},
+          {"method", options.flags.method},
           {"poses", options.poses},
           {"vertices", interpolator.poses().vertex_count()},
           {"faces", faces.rows()},
@@ -215,7 +193,6 @@ void run_interpolate(InterpolateCommandOptions options, const std::vector<Eigen:
 
 void add_interpolate_command(CLI::App& app, int& exit_status) {
   auto options = std::make_shared<InterpolateCommandOptions>();
-  InterpolationOptions& c = options->interpolation;
   auto* command = app.add_subcommand(
       "interpolate",
       "In-between poses of an articulated shape in a mixed shape space (MixIT) or a baseline");
@@ -235,45 +212,10 @@ void add_interpolate_command(CLI::App& app, int& exit_status) {
       ->expected(1, 1 << 20);
   command->add_option("-o,--output", options->output, "Output mesh (OBJ, OFF or PLY); {} numbers several")
       ->required();
-  command->add_option("--method", options->method, "mixit, edge (whole mesh in edge space) or vertex (linear)")
-      ->check(CLI::IsMember({"mixit", "edge", "vertex"}))
-      ->capture_default_str();
   command->add_option("--segmentation", options->segmentation, "Part ids per vertex or per face instead of the automatic segmentation");
   command->add_option("--save-segmentation", options->save_segmentation, "Write the part id of every face used (mixit)");
   command->add_option("--report", options->report, "Write a JSON report (errors, stage times) to this file");
-  command->add_option("--joint-width", c.joint_width, "Triangle strips of a joint on each side of a part boundary")
-      ->check(CLI::Range(1, 100))
-      ->capture_default_str();
-  command->add_option("--rigidity-angle", c.segmentation.rigidity_angle_degrees,
-                      "Automatic segmentation: largest rotation (degrees) between a part's faces")
-      ->check(CLI::Range(0.01, 179.99))
-      ->capture_default_str();
-  command->add_option("--min-part-fraction", c.segmentation.min_part_fraction,
-                      "Automatic segmentation: smaller parts (fraction of the faces) are merged")
-      ->check(CLI::Range(0.0, 0.999))
-      ->capture_default_str();
-  command->add_option("--joint-iterations", c.joint_iterations, "Gauss-Newton iterations of each joint before alignment")
-      ->check(CLI::Range(0, 1000))
-      ->capture_default_str();
-  command->add_option("--refinement-iterations", c.refinement_iterations,
-                      "Gauss-Newton iterations of all joints with the parts' rigid motions after stitching")
-      ->check(CLI::Range(0, 1000))
-      ->capture_default_str();
-  command->add_option("--projection-passes", c.projection_passes,
-                      "Final local/global passes towards the interpolated lengths and dihedral angles")
-      ->check(CLI::Range(0, 1000))
-      ->capture_default_str();
-  command->add_option("--projection-hinge-weight", c.projection_hinge_weight,
-                      "Weight of dihedral angles against edge lengths in those passes")
-      ->check(CLI::Range(0.0, 1e6))
-      ->capture_default_str();
-  command->add_option("--edge-iterations", c.edge_iterations, "Gauss-Newton iterations of the edge method")
-      ->check(CLI::Range(0, 10000))
-      ->capture_default_str();
-  command->add_option("--bending-weight", c.bending_weight,
-                      "Weight of squared dihedral errors against squared relative edge-length errors")
-      ->check(CLI::Range(1e-9, 1e9))
-      ->capture_default_str();
+  add_interpolation_flags(command, options->flags);
   command->callback([options, &exit_status] {
     const std::vector<Eigen::VectorXd> weights = checked_weights(*options);  // usage errors: status 2
     exit_status = run_guarded([&] { run_interpolate(*options, weights); });

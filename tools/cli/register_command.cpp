@@ -46,32 +46,12 @@ void run_register(RegisterCommandOptions& options) {
       register_partial_scan(deformer, scan, features.vertices, features.positions, options.fit);
   write_mesh(options.output, Mesh{registration.deformation.vertices, examples.faces()});
 
-  nlohmann::json rounds = nlohmann::json::array();
-  for (const ScanFitIteration& it : registration.iterations) {
-    rounds.push_back({{"matches", it.matches},
-                      {"median_distance", it.median_distance},
-                      {"energy", it.energy},
-                      {"seconds", it.seconds}});
-  }
+  registration_json(registration, examples, deformer, report);
+  report["features"] = features.vertices.size();
   const Eigen::VectorXd& d = registration.distances;
   report["examples"] = options.blend.examples;
   report["reference"] = options.blend.examples.front();
   report["scan"] = {{"file", options.scan}, {"vertices", scan.vertices.rows()}, {"faces", scan.faces.rows()}};
-  report["features"] = features.vertices.size();
-  report["setup"] = setup_json(deformer.setup_report());
-  report["initial"] = deformation_json(registration.initial, examples);
-  report["deformation"] = deformation_json(registration.deformation, examples);
-  report["icp"] = rounds;
-  report["correspondence_of_scan_vertices"] = {
-      {"mesh_vertex", std::vector<int>(registration.correspondence.data(),
-                                       registration.correspondence.data() + registration.correspondence.size())},
-      {"distance", std::vector<double>(d.data(), d.data() + d.size())},
-      {"median_distance", [&] {
-         std::vector<double> sorted(d.data(), d.data() + d.size());
-         std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-         return sorted[sorted.size() / 2];
-       }()},
-      {"max_distance", d.maxCoeff()}};
   report["seconds"] = {{"reading", reading},
                        {"setup", deformer.setup_report().seconds.total},
                        {"registration", registration.seconds},
@@ -87,7 +67,6 @@ void run_register(RegisterCommandOptions& options) {
 
 void add_register_command(CLI::App& app, int& exit_status) {
   auto options = std::make_shared<RegisterCommandOptions>();
-  ScanFitOptions& f = options->fit;
   auto* command = app.add_subcommand(
       "register", "Complete a partial scan: fit the full mesh of the examples to it and match its points");
   add_blend_options(command, options->blend);
@@ -98,21 +77,7 @@ void add_register_command(CLI::App& app, int& exit_status) {
   command->add_option("-o,--output", options->output, "Fitted full mesh (OBJ, OFF or PLY)")->required();
   command->add_option("--report", options->report,
                       "Write a JSON report (with the mesh vertex matched to every scan vertex) to this file");
-  command->add_option("--icp-iterations", f.iterations, "Rounds of non-rigid ICP")
-      ->check(CLI::Range(0, 10000))
-      ->capture_default_str();
-  command->add_option("--scan-points", f.max_scan_points, "Scan points used as constraints per round")
-      ->check(CLI::Range(1, 100000000))
-      ->capture_default_str();
-  command->add_option("--scan-weight", f.scan_weight, "Weight of a scan point against a feature point")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  command->add_option("--normal-angle", f.max_normal_angle_degrees, "Largest angle between matched normals, degrees")
-      ->check(CLI::Range(1e-6, 180.0))
-      ->capture_default_str();
-  command->add_option("--rejection-factor", f.rejection_factor, "Drop matches farther than this times the median")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  add_scan_fit_options(command, options->fit);
   command->callback([options, &exit_status] { exit_status = run_guarded([&] { run_register(*options); }); });
 }
 

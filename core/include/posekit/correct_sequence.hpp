@@ -28,6 +28,11 @@ struct SequenceCorrectionOptions {
   bool carry_corrections = true;
 };
 
+/// Frames on each side of a frame whose corrections its blend reads (three standard deviations,
+/// rounded up): a part of a sequence blended with this many more frames on each side gives the same
+/// frames as the whole sequence.
+int blend_radius(double smoothing_frames);
+
 /// One frame's outcome.
 struct FrameCorrection {
   Eigen::MatrixX3d vertices;        ///< the result (#V by 3); empty when the frame failed
