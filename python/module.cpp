@@ -52,6 +52,21 @@ CorrectionOptions correction_options_from(py::kwargs keywords, const std::string
   return options;
 }
 
+// Calls a Python progress callback, if one was given, with (stage, fraction done), from a thread
+// that does not hold the GIL.
+class StageProgress {
+ public:
+  explicit StageProgress(const py::object& callback) : callback_(callback) {}
+  void operator()(const std::string& stage, double fraction) const {
+    if (callback_.is_none()) return;
+    py::gil_scoped_acquire acquire;
+    callback_(stage, fraction);
+  }
+
+ private:
+  const py::object& callback_;
+};
+
 py::tuple read_mesh_python(const std::string& path) {
   Mesh mesh = read_mesh(path);
   return py::make_tuple(py::cast(std::move(mesh.vertices)), py::cast(std::move(mesh.faces)));
@@ -186,7 +201,7 @@ Eigen::VectorXd weight_vector(const py::handle& value, int pose_count) {
 }
 
 py::object interpolate_python(const py::object& poses, const py::object& f, const py::object& weights,
-                              const py::kwargs& keywords) {
+                              const py::object& progress, const py::kwargs& keywords) {
   const FacesArgument faces(f, "F");
   std::vector<Eigen::MatrixX3d> pose_vertices = vertices_list(poses, "poses");
   CLI::App app{"interpolate", "interpolate"};
@@ -210,13 +225,18 @@ py::object interpolate_python(const py::object& poses, const py::object& f, cons
     py::gil_scoped_release release;
     PoseSet set(faces.matrix());
     for (Eigen::MatrixX3d& pose : pose_vertices) set.add_pose(std::move(pose));
+    const StageProgress report(progress);
+    report("precomputation", 0.0);
     PoseInterpolator interpolator(std::move(set), options);
-    for (const Eigen::VectorXd& w : vectors) {
+    report("precomputation", 1.0);
+    for (size_t i = 0; i < vectors.size(); ++i) {
+      report("interpolation", static_cast<double>(i) / static_cast<double>(vectors.size()));
       InterpolationStepReport step;
-      Eigen::MatrixX3d pose = interpolator.interpolate(w, &step);
-      const InterpolationError error = interpolator.error(pose, w);
-      results.emplace_back(std::move(pose), cli::interpolation_step_json(w, step, error));
+      Eigen::MatrixX3d pose = interpolator.interpolate(vectors[i], &step);
+      const InterpolationError error = interpolator.error(pose, vectors[i]);
+      results.emplace_back(std::move(pose), cli::interpolation_step_json(vectors[i], step, error));
     }
+    report("interpolation", 1.0);
   }
   py::list out;
   for (auto& [pose, report] : results) out.append(py::make_tuple(py::cast(std::move(pose)), to_python(report)));
@@ -260,7 +280,7 @@ BlendedDeformer deformer_of(const PoseSet& set, const cli::BlendCommandOptions& 
 
 py::tuple register_python(const py::object& examples, const py::object& f, const py::object& scan_v,
                           const py::object& scan_f, const py::object& vertices, const py::object& positions,
-                          const py::object& weights, const py::kwargs& keywords) {
+                          const py::object& weights, const py::object& progress, const py::kwargs& keywords) {
   const FacesArgument faces(f, "F");
   std::vector<Eigen::MatrixX3d> example_vertices = vertices_list(examples, "examples");
   const VerticesArgument scan_vertices(scan_v, "scan_V");
@@ -279,10 +299,15 @@ py::tuple register_python(const py::object& examples, const py::object& f, const
   Eigen::MatrixX3d result;
   {
     py::gil_scoped_release release;
+    const StageProgress stage(progress);
     const PoseSet set = example_set(std::move(example_vertices), faces.matrix(), features, "register");
+    stage("setup", 0.0);
     BlendedDeformer deformer = deformer_of(set, options, skinning);
+    stage("setup", 1.0);
     const Mesh scan{scan_vertices.matrix(), scan_faces.matrix()};
+    stage("registration", 0.0);
     const ScanRegistration registration = register_partial_scan(deformer, scan, features, feature_positions.matrix(), fit);
+    stage("registration", 1.0);
     cli::registration_json(registration, set, deformer, report);
     report["features"] = features.size();
     result = registration.deformation.vertices;
@@ -291,7 +316,8 @@ py::tuple register_python(const py::object& examples, const py::object& f, const
 }
 
 py::tuple deform_python(const py::object& examples, const py::object& f, const py::object& vertices,
-                        const py::object& positions, const py::object& weights, const py::kwargs& keywords) {
+                        const py::object& positions, const py::object& weights, const py::object& progress,
+                        const py::kwargs& keywords) {
   const FacesArgument faces(f, "F");
   std::vector<Eigen::MatrixX3d> example_vertices = vertices_list(examples, "examples");
   const VerticesArgument targets(positions, "positions");
@@ -309,9 +335,14 @@ py::tuple deform_python(const py::object& examples, const py::object& f, const p
   Eigen::MatrixX3d result;
   {
     py::gil_scoped_release release;
+    const StageProgress stage(progress);
     const PoseSet set = example_set(std::move(example_vertices), faces.matrix(), constraints.vertices, "deform");
+    stage("setup", 0.0);
     BlendedDeformer deformer = deformer_of(set, options, skinning);
+    stage("setup", 1.0);
+    stage("deformation", 0.0);
     const BlendResult deformed = cli::deform_to_points(deformer, constraints, report);
+    stage("deformation", 1.0);
     report["setup"] = cli::setup_json(deformer.setup_report());
     report["deformation"] = cli::deformation_json(deformed, set);
     result = deformed.vertices;
@@ -355,28 +386,31 @@ PYBIND11_MODULE(_posekit, m) {
         "Options are those of `posekit correct`, as keywords: device='auto', key_frames=11, collar_rings=3,\n"
         "whole_mesh=False, no_<stage>=True to skip a repair stage, exclude=[vertex indices], ...\n"
         "Returns (V, report): the corrected vertices and the report as a dict (the --report JSON).");
-  m.def("interpolate", &interpolate_python, "poses"_a, "F"_a, "weights"_a,
+  m.def("interpolate", &interpolate_python, "poses"_a, "F"_a, "weights"_a, py::kw_only(), "progress"_a = py::none(),
         "In-between poses of one shape (docs/interpolate.md).\n\n"
         "poses: a sequence of K float64 n x 3 arrays sharing F (int m x 3). weights: a number t for two poses\n"
         "((1 - t, t)), K weights summing to 1, or a list of those for several poses from one precomputation.\n"
+        "progress: called with (stage, fraction done): precomputation, then interpolation.\n"
         "Options are those of `posekit interpolate`, as keywords: method='mixit' (or 'edge', 'vertex'),\n"
         "joint_width, refinement_iterations, projection_passes, edge_iterations, bending_weight, ...\n"
         "Returns (V, report), or a list of those for a list of weights; the report holds the weights, the\n"
         "errors against the interpolated edge lengths and dihedral angles, and the seconds of each step.");
   m.def("deform", &deform_python, "examples"_a, "F"_a, "vertices"_a, "positions"_a, py::kw_only(),
-        "weights"_a = py::none(),
+        "weights"_a = py::none(), "progress"_a = py::none(),
         "A natural pose from a few point constraints, learned from example poses (docs/deform-register.md).\n\n"
         "examples: a sequence of float64 n x 3 poses sharing F (int m x 3), the first the reference.\n"
         "vertices: the constrained vertex indices; positions: their k x 3 target positions.\n"
-        "weights: n x w skinning weights instead of Laplace-Beltrami eigenfunctions. Options are those of\n"
+        "weights: n x w skinning weights instead of Laplace-Beltrami eigenfunctions. progress: called with\n"
+        "(stage, fraction done): setup, then deformation. Options are those of\n"
         "`posekit deform`, as keywords: eigenfunctions, atom_fraction, clusters, constraint_weight, ...\n"
         "Returns (V, report): the deformed pose and its setup and deformation report.");
   m.def("register", &register_python, "examples"_a, "F"_a, "scan_V"_a, "scan_F"_a, "vertices"_a, "positions"_a,
-        py::kw_only(), "weights"_a = py::none(),
+        py::kw_only(), "weights"_a = py::none(), "progress"_a = py::none(),
         "Completes a partial scan: the examples' full mesh fitted to it (docs/deform-register.md).\n\n"
         "examples: float64 n x 3 poses sharing F (int m x 3), the first the reference. scan_V, scan_F: the\n"
         "scan's triangle mesh. vertices, positions: mesh vertices and their k x 3 positions on the scan.\n"
-        "weights: n x w skinning weights instead of eigenfunctions. Options are those of `posekit register`,\n"
+        "weights: n x w skinning weights instead of eigenfunctions. progress: called with (stage, fraction\n"
+        "done): setup, then registration. Options are those of `posekit register`,\n"
         "as keywords: icp_iterations, scan_points, scan_weight, normal_angle, eigenfunctions, ...\n"
         "Returns (V, report): the fitted mesh and the report (ICP rounds, the mesh vertex of each scan vertex).");
   m.def("blend_radius", &blend_radius, "smoothing"_a,

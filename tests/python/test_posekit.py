@@ -153,8 +153,10 @@ def test_correct_releases_the_gil(arm):
 def test_interpolate_like_the_command_line(arm, tmp_path):
     V0, F = posekit.read_mesh(str(arm["rest"]))
     V1, _ = posekit.read_mesh(str(arm["bent"]))
-    V_mid, report = posekit.interpolate([V0, V1], F, 0.5)
+    stages = []
+    V_mid, report = posekit.interpolate([V0, V1], F, 0.5, progress=lambda stage, done: stages.append((stage, done)))
     assert report["weights"] == [0.5, 0.5] and np.isfinite(V_mid).all()
+    assert stages[0] == ("precomputation", 0.0) and stages[-1] == ("interpolation", 1.0)
     out = tmp_path / "mid.obj"
     result = cli("interpolate", str(arm["rest"]), str(arm["bent"]), "--weights", "0.5", "-o", str(out))
     assert result.returncode == 0, result.stderr
@@ -173,7 +175,10 @@ def test_deform_like_the_command_line(arm, tmp_path):
     V1, _ = posekit.read_mesh(str(arm["bent"]))
     vertices = [0, V0.shape[0] // 3, V0.shape[0] // 2, V0.shape[0] - 1]
     positions = V1[vertices]
-    V_out, report = posekit.deform([V0, V1], F, vertices, positions, eigenfunctions=10)
+    stages = []
+    V_out, report = posekit.deform([V0, V1], F, vertices, positions, eigenfunctions=10,
+                                   progress=lambda stage, done: stages.append((stage, done)))
+    assert stages == [("setup", 0.0), ("setup", 1.0), ("deformation", 0.0), ("deformation", 1.0)]
     assert V_out.shape == V0.shape and np.isfinite(V_out).all()
     assert "deformation" in report and "setup" in report
     constraints = tmp_path / "points.txt"
@@ -200,8 +205,10 @@ def test_register_like_the_command_line(arm, tmp_path):
     scan_V, scan_F = V1[used], renumber[kept].astype(np.int32)
     features = [int(used[0]), int(used[used.size // 2]), int(used[-1])]
     positions = V1[features]
+    stages = []
     V_out, report = posekit.register([V0, V1], F, scan_V, scan_F, features, positions, eigenfunctions=10,
-                                     icp_iterations=2)
+                                     icp_iterations=2, progress=lambda stage, done: stages.append(stage))
+    assert stages == ["setup", "setup", "registration", "registration"]
     assert V_out.shape == V0.shape and np.isfinite(V_out).all()
     assert len(report["correspondence_of_scan_vertices"]["mesh_vertex"]) == scan_V.shape[0]
     scan_file, feature_file, out = tmp_path / "scan.ply", tmp_path / "features.txt", tmp_path / "fitted.obj"
