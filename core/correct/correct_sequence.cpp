@@ -12,6 +12,7 @@
 #include <tbb/parallel_for.h>
 
 #include <mutex>
+#include <optional>
 
 #include <algorithm>
 #include <chrono>
@@ -101,27 +102,29 @@ Acceleration acceleration(const std::vector<const Eigen::MatrixX3d*>& poses, con
   return out;
 }
 
-// The smallest quarter of the previous frame's correction that frees frame t without stretching more
-// faces than the previous result has; sets frame.carried and frame.carried_scale when one does.
-void carry_previous(int t, const std::vector<Eigen::MatrixX3d>& frames, const std::vector<Eigen::MatrixX3d>& own,
-                    const std::vector<char>& usable, const Eigen::Ref<const Eigen::MatrixX3i>& faces,
-                    const Eigen::Ref<const Eigen::MatrixX3d>& reference, const std::vector<int>& reference_faces,
-                    FrameCorrection& frame) {
+// Frame t with the smallest quarter of the previous frame's correction that frees it without stretching
+// more faces than the previous result has (frame.carried and frame.carried_scale set), or nullopt.
+std::optional<Eigen::MatrixX3d> carry_previous(int t, const std::vector<Eigen::MatrixX3d>& frames,
+                                               const std::vector<Eigen::MatrixX3d>& own, const std::vector<char>& usable,
+                                               const Eigen::Ref<const Eigen::MatrixX3i>& faces,
+                                               const Eigen::Ref<const Eigen::MatrixX3d>& reference,
+                                               const std::vector<int>& reference_faces, FrameCorrection& frame) {
   const auto previous = static_cast<size_t>(t - 1);
-  if (!usable[previous]) return;
+  if (!usable[previous]) return std::nullopt;
   const Eigen::MatrixX3d offset = own[previous] - frames[previous];
-  if (!(offset.array() != 0.0).any()) return;
+  if (!(offset.array() != 0.0).any()) return std::nullopt;
   const detail::StretchMeasure previous_stretch(reference, frames[previous], faces);
   const int allowed_stretch = previous_stretch.count(own[previous]);
   const detail::StretchMeasure stretch(reference, frames[static_cast<size_t>(t)], faces);
   for (int quarter = 1; quarter <= 4; ++quarter) {
-    const Eigen::MatrixX3d pose = frames[static_cast<size_t>(t)] + 0.25 * quarter * offset;
+    Eigen::MatrixX3d pose = frames[static_cast<size_t>(t)] + 0.25 * quarter * offset;
     if (new_face_count(pose, faces, reference_faces) == 0 && stretch.count(pose) <= allowed_stretch) {
       frame.carried = true;
       frame.carried_scale = 0.25 * quarter;
-      return;
+      return pose;
     }
   }
+  return std::nullopt;
 }
 
 double ratio(double value, double base) { return base > 0.0 ? value / base : (value > 0.0 ? INFINITY : 1.0); }
@@ -176,9 +179,12 @@ std::vector<FrameCorrection> correct_sequence(const Eigen::Ref<const Eigen::Matr
       return;
     }
     const Clock::time_point frame_start = Clock::now();
-    if (options.carry_corrections && t > 0) carry_previous(t, frames, own, usable, faces, reference, reference_faces, frame);
-    if (frame.carried) {
-      own[index] = frames[index] + frame.carried_scale * (own[index - 1] - frames[index - 1]);
+    std::optional<Eigen::MatrixX3d> carried;
+    if (options.carry_corrections && t > 0) {
+      carried = carry_previous(t, frames, own, usable, faces, reference, reference_faces, frame);
+    }
+    if (carried) {
+      own[index] = std::move(*carried);
       frame.corrected = true;
     } else {
       try {
