@@ -48,6 +48,13 @@ def _client_of(client, Client, LocalCluster):
         yield client
 
 
+def _broadcast(dask, V_ref, F):
+    """The reference and the faces on every worker, under keys of this call alone: with keys derived
+    from the content (Dask's default), a run right after another on the same reference reuses keys that
+    the scheduler may still be releasing, and the copies to the workers are then lost."""
+    return dask.scatter([V_ref, np.asarray(F)], broadcast=True, hash=False)
+
+
 def _new_faces(V_ref, frames, F):
     return [_posekit.check(V, F, reference=V_ref)["new_self_intersecting_faces"] for V in frames]
 
@@ -116,7 +123,7 @@ def correct_sequence(V_ref, frames: Sequence[np.ndarray], F, client=None, chunk_
     count = len(frames)
     options = dict(options, carry=carry)
     with _connected(client) as dask:
-        reference, faces = dask.scatter([V_ref, np.asarray(F)], broadcast=True)
+        reference, faces = _broadcast(dask, V_ref, F)
         spans = [(a, min(a + chunk_frames, count)) for a in range(0, count, chunk_frames)]
         needs = sum(dask.gather([dask.submit(_new_faces, reference, frames[a:b], faces, pure=False)
                                  for a, b in spans]), [])
@@ -164,7 +171,7 @@ def correct(V_ref, targets: Sequence[np.ndarray], F, client=None,
     target. The keywords are those of posekit.correct. Returns a (V, report) per target, in order."""
     V_ref, targets = _check_sequence(V_ref, targets, F)
     with _connected(client) as dask:
-        reference, faces = dask.scatter([V_ref, np.asarray(F)], broadcast=True)
+        reference, faces = _broadcast(dask, V_ref, F)
         futures = [dask.submit(_correct_one, reference, V, faces, options, pure=False) for V in targets]
         if progress:
             from dask.distributed import as_completed
