@@ -12,6 +12,7 @@ packages=(
   mesa-vulkan-drivers libvulkan-dev glslang-tools vulkan-validationlayers spirv-tools
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo
   pybind11-dev python3-dev python3-numpy python3-pytest python3-distributed
+  libjs-three chromium fonts-dejavu-core libpng-dev
 )
 
 missing=()

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -119,9 +120,8 @@ InterpolationError InterpolationErrorMeter::measure(const Eigen::Ref<const Eigen
     error.finite = false;
     return error;
   }
-  const Eigen::VectorXd target_lengths = coordinates_.combined_lengths(weights);
   const Eigen::VectorXd target_angles = coordinates_.combined_angles(weights);
-  const Eigen::VectorXd lengths = edge_lengths(result, edges_.edges);
+  const Eigen::VectorXd relative_length_errors = edge_length_errors(result, weights);
   const Eigen::VectorXd angles = dihedral_angles(result, faces_, edges_, incident_faces_);
   const int edge_count = coordinates_.edge_count();
   std::vector<double> length_errors;
@@ -129,7 +129,7 @@ InterpolationError InterpolationErrorMeter::measure(const Eigen::Ref<const Eigen
   length_errors.reserve(static_cast<size_t>(edge_count));
   angle_errors.reserve(static_cast<size_t>(edge_count));
   for (int e = 0; e < edge_count; ++e) {
-    if (target_lengths(e) > 0.0) length_errors.push_back(std::abs(lengths(e) - target_lengths(e)) / target_lengths(e));
+    if (!std::isnan(relative_length_errors(e))) length_errors.push_back(relative_length_errors(e));
     if (!coordinates_.hinge[static_cast<size_t>(e)]) continue;
     const double degrees = std::isfinite(angles(e)) ? std::abs(wrap_angle(angles(e) - target_angles(e))) * kDegreesPerRadian
                                                     : 180.0;
@@ -144,6 +144,37 @@ InterpolationError InterpolationErrorMeter::measure(const Eigen::Ref<const Eigen
   }
   error.flipped_faces = flipped_faces(result);
   return error;
+}
+
+Eigen::VectorXd InterpolationErrorMeter::edge_length_errors(const Eigen::Ref<const Eigen::MatrixX3d>& result,
+                                                            const Eigen::VectorXd& weights) const {
+  const Eigen::VectorXd target_lengths = coordinates_.combined_lengths(weights);
+  const Eigen::VectorXd lengths = edge_lengths(result, edges_.edges);
+  Eigen::VectorXd errors(lengths.size());
+  for (Eigen::Index e = 0; e < lengths.size(); ++e) {
+    errors(e) = target_lengths(e) > 0.0 ? std::abs(lengths(e) - target_lengths(e)) / target_lengths(e)
+                                        : std::numeric_limits<double>::quiet_NaN();
+  }
+  return errors;
+}
+
+Eigen::VectorXd InterpolationErrorMeter::vertex_edge_length_errors(const Eigen::Ref<const Eigen::MatrixX3d>& result,
+                                                                   const Eigen::VectorXd& weights) const {
+  if (weights.size() != coordinates_.pose_count()) {
+    throw ArgumentError("interpolation error: " + std::to_string(weights.size()) + " weights for " +
+                        std::to_string(coordinates_.pose_count()) + " poses");
+  }
+  check_face_indices(faces_, static_cast<int>(result.rows()));
+  const Eigen::VectorXd errors = edge_length_errors(result, weights);
+  Eigen::VectorXd largest = Eigen::VectorXd::Zero(result.rows());
+  for (Eigen::Index e = 0; e < errors.size(); ++e) {
+    if (!(errors(e) > 0.0)) continue;  // NaN or 0
+    for (int end = 0; end < 2; ++end) {
+      double& value = largest(edges_.edges(e, end));
+      value = std::max(value, errors(e));
+    }
+  }
+  return largest;
 }
 
 InterpolationError interpolation_error(const Eigen::Ref<const Eigen::MatrixX3d>& result, const PoseSet& poses,

@@ -161,6 +161,11 @@ InterpolationError PoseInterpolator::error(const Eigen::Ref<const Eigen::MatrixX
   return state_->meter->measure(result, normalized_weights(weights, state_->poses.pose_count()));
 }
 
+Eigen::VectorXd PoseInterpolator::vertex_edge_length_errors(const Eigen::Ref<const Eigen::MatrixX3d>& result,
+                                                            const Eigen::VectorXd& weights) const {
+  return state_->meter->vertex_edge_length_errors(result, normalized_weights(weights, state_->poses.pose_count()));
+}
+
 const PoseSet& PoseInterpolator::poses() const { return state_->poses; }
 const InterpolationOptions& PoseInterpolator::options() const { return state_->options; }
 const Eigen::VectorXi& PoseInterpolator::face_parts() const { return state_->face_parts; }

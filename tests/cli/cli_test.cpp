@@ -31,12 +31,6 @@ std::vector<MalformedCase> malformed_cases() {
   return cases;
 }
 
-std::vector<std::filesystem::path> folder_contents(const std::filesystem::path& folder) {
-  std::vector<std::filesystem::path> entries;
-  for (const auto& entry : std::filesystem::directory_iterator(folder)) entries.push_back(entry.path());
-  return entries;
-}
-
 class MalformedInput : public ::testing::TestWithParam<MalformedCase> {};
 
 TEST_P(MalformedInput, ConvertFailsWithOneLineAndWritesNothing) {

@@ -35,14 +35,15 @@ std::vector<std::string> CommandResult::err_lines() const {
   return lines;
 }
 
-CommandResult run_posekit(const std::vector<std::string>& arguments) { return run_posekit_until(arguments, {}); }
+namespace {
 
-CommandResult run_posekit_until(const std::vector<std::string>& arguments, const std::function<bool()>& stop) {
+CommandResult run_until(const std::string& program, const std::vector<std::string>& arguments,
+                        const std::function<bool()>& stop) {
   TemporaryDirectory capture;
   const std::string out_path = (capture.path() / "stdout").string();
   const std::string err_path = (capture.path() / "stderr").string();
 
-  std::vector<std::string> argv_storage{POSEKIT_CLI_PATH};
+  std::vector<std::string> argv_storage{program};
   argv_storage.insert(argv_storage.end(), arguments.begin(), arguments.end());
   std::vector<char*> argv;
   for (std::string& argument : argv_storage) argv.push_back(argument.data());
@@ -54,9 +55,9 @@ CommandResult run_posekit_until(const std::vector<std::string>& arguments, const
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   pid_t child = 0;
-  const int spawn_error = posix_spawn(&child, argv[0], &actions, nullptr, argv.data(), environ);
+  const int spawn_error = posix_spawnp(&child, argv[0], &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
-  if (spawn_error != 0) throw std::runtime_error(std::string("cannot start ") + POSEKIT_CLI_PATH);
+  if (spawn_error != 0) throw std::runtime_error("cannot start " + program);
 
   int wait_status = 0;
   if (stop) {
@@ -81,6 +82,18 @@ CommandResult run_posekit_until(const std::vector<std::string>& arguments, const
   result.out = read_file(out_path);
   result.err = read_file(err_path);
   return result;
+}
+
+}  // namespace
+
+CommandResult run_posekit(const std::vector<std::string>& arguments) { return run_until(POSEKIT_CLI_PATH, arguments, {}); }
+
+CommandResult run_posekit_until(const std::vector<std::string>& arguments, const std::function<bool()>& stop) {
+  return run_until(POSEKIT_CLI_PATH, arguments, stop);
+}
+
+CommandResult run_program(const std::string& program, const std::vector<std::string>& arguments) {
+  return run_until(program, arguments, {});
 }
 
 }  // namespace posekit::testing

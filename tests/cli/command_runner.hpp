@@ -1,4 +1,4 @@
-// Runs the posekit executable in a child process and captures what it printed.
+// Runs the posekit executable (or another program) in a child process and captures what it printed.
 #pragma once
 
 #include <functional>
@@ -20,5 +20,8 @@ CommandResult run_posekit(const std::vector<std::string>& arguments);
 
 /// The same, killed (SIGKILL, exit status 137) as soon as `stop` returns true: an interrupted run.
 CommandResult run_posekit_until(const std::vector<std::string>& arguments, const std::function<bool()>& stop);
+
+/// Runs `program ARGS...` (a path, or a name looked up in PATH) with stdin closed.
+CommandResult run_program(const std::string& program, const std::vector<std::string>& arguments);
 
 }  // namespace posekit::testing

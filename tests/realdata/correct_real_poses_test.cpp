@@ -51,7 +51,9 @@ void expect_stage_chain(const CorrectionReport& report, const std::string& freed
     if (previous != nullptr) {
       EXPECT_EQ(stage.new_faces_before, previous->new_faces_after) << stage.name << " after " << previous->name;
     }
-    if (!stage.kept) EXPECT_EQ(stage.new_faces_after, stage.new_faces_before) << stage.name << " was not kept";
+    if (!stage.kept) {
+      EXPECT_EQ(stage.new_faces_after, stage.new_faces_before) << stage.name << " was not kept";
+    }
     if (freeing == nullptr && stage.new_faces_before > 0 && stage.new_faces_after == 0) freeing = &stage;
     previous = &stage;
   }
@@ -62,7 +64,9 @@ void expect_stage_chain(const CorrectionReport& report, const std::string& freed
   }
   ASSERT_NE(freeing, nullptr) << "no stage freed the pose:" << stage_list(report);
   EXPECT_TRUE(freeing->kept) << freeing->name;
-  if (!freed_by.empty()) EXPECT_EQ(freeing->name, freed_by) << "stages:" << stage_list(report);
+  if (!freed_by.empty()) {
+    EXPECT_EQ(freeing->name, freed_by) << "stages:" << stage_list(report);
+  }
 }
 
 void expect_corrected(const PosePair& pair, const CorrectionOptions& options) {

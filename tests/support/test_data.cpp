@@ -68,4 +68,10 @@ TemporaryDirectory::~TemporaryDirectory() {
   return ::testing::AssertionSuccess();
 }
 
+std::vector<std::filesystem::path> folder_contents(const std::filesystem::path& folder) {
+  std::vector<std::filesystem::path> entries;
+  for (const auto& entry : std::filesystem::directory_iterator(folder)) entries.push_back(entry.path());
+  return entries;
+}
+
 }  // namespace posekit::testing

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <vector>
 #include <optional>
 #include <string>
 
@@ -32,6 +33,9 @@ class TemporaryDirectory {
  private:
   std::filesystem::path path_;
 };
+
+/// The entries of `folder` (files and folders), in no particular order.
+std::vector<std::filesystem::path> folder_contents(const std::filesystem::path& folder);
 
 /// Passes when |a - b| <= abs_tol + rel_tol * |b| elementwise; on failure names the first bad index.
 ::testing::AssertionResult matrices_near(const Eigen::MatrixXd& actual, const Eigen::MatrixXd& expected,

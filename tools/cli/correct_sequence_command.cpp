@@ -6,6 +6,9 @@
 #include "commands.hpp"
 #include "correction_flags.hpp"
 #include "frame_progress.hpp"
+#include "html_page.hpp"
+#include "html_report_option.hpp"
+#include "job_pages.hpp"
 #include "sequence_report_json.hpp"
 
 #include <posekit/correct_sequence.hpp>
@@ -31,6 +34,7 @@ struct SequenceCommandOptions {
   std::string frames_from;
   std::string output;
   std::string report;
+  std::string html;
   bool resume = false;
   bool no_carry = false;
   double smoothing_frames = SequenceCorrectionOptions{}.smoothing_frames;
@@ -86,6 +90,7 @@ std::string run_fingerprint(const Mesh& reference, const SequenceCorrectionOptio
 }
 
 void run_correct_sequence(const SequenceCommandOptions& options) {
+  if (!options.html.empty()) report::check_report_destination(options.html, "--html");
   std::vector<std::string> files = options.frames;
   if (!options.frames_from.empty()) {
     const std::vector<std::string> listed = read_frame_list(options.frames_from);
@@ -175,6 +180,13 @@ void run_correct_sequence(const SequenceCommandOptions& options) {
   if (!options.report.empty()) {
     write_text_atomically(options.report, sequence_report_json(report, results, names, device_name).dump(2) + "\n");
   }
+  if (!options.html.empty()) {
+    std::vector<Eigen::MatrixX3d> shown;  // a frame not corrected is shown as its target
+    shown.reserve(results.size());
+    for (size_t t = 0; t < results.size(); ++t) shown.push_back(results[t].error.empty() ? results[t].vertices : frames[t]);
+    report::write_html_report(options.html, report::sequence_page(reference.vertices, frames, shown, reference.faces, names,
+                                                                  report, command_line()));
+  }
   if (report.failed_frames == 0) fs::remove_all(partial, error);
   const SequenceCoherence& c = report.coherence;
   std::cout << std::fixed << std::setprecision(2) << folder.string() << ": " << report.frames << " frames, "
@@ -202,6 +214,7 @@ void add_correct_sequence_command(CLI::App& app, int& exit_status) {
   command->add_option("-o,--output", options->output, "Folder for the corrected frames, each under its own name")
       ->required();
   command->add_option("--report", options->report, "Write a JSON report of the sequence and every frame to this file");
+  add_html_option(command, options->html);
   command->add_flag("--resume", options->resume,
                     "Reuse the frame corrections an interrupted run kept in the output folder");
   command->add_option("--smoothing", options->smoothing_frames,

@@ -1,6 +1,9 @@
 #include "blend_common.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "html_page.hpp"
+#include "html_report_option.hpp"
+#include "job_pages.hpp"
 
 #include <posekit/error.hpp>
 #include <posekit/mesh_io.hpp>
@@ -17,6 +20,7 @@ struct DeformCommandOptions {
   std::string constraints;
   std::string output;
   std::string report;
+  std::string html;
   std::string to;
   int frames = 5;
 };
@@ -48,6 +52,7 @@ nlohmann::json residual_json(const Eigen::MatrixX3d& vertices, const PointConstr
 void run_deform(DeformCommandOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   mesh_format_from_extension(options.output);  // a bad output name fails before any work
+  if (!options.html.empty()) report::check_report_destination(options.html, "--html");
   if (!options.to.empty() && options.frames < 2) throw ArgumentError("--frames must be at least 2");
   const PoseSet examples = read_examples(options.blend);
   PointConstraints constraints = read_point_constraints(options.constraints, examples.vertex_count());
@@ -62,9 +67,11 @@ void run_deform(DeformCommandOptions& options) {
   const double solving = seconds_since(solve_start);
 
   std::vector<std::filesystem::path> written;
+  std::vector<Eigen::MatrixX3d> shown;  // for the HTML report
   if (options.to.empty()) {
     write_mesh(options.output, Mesh{result.vertices, examples.faces()});
     written.push_back(options.output);
+    shown.push_back(result.vertices);
   } else {
     nlohmann::json second_report;
     const BlendResult end = deform_to_points(deformer, second, second_report);
@@ -74,7 +81,8 @@ void run_deform(DeformCommandOptions& options) {
     for (int i = 0; i < options.frames; ++i) {
       const double t = static_cast<double>(i) / (options.frames - 1);
       const std::filesystem::path name = frame_name(options.output, i);
-      write_mesh(name, Mesh{deformer.interpolate(result, end, t), examples.faces()});
+      shown.push_back(deformer.interpolate(result, end, t));
+      write_mesh(name, Mesh{shown.back(), examples.faces()});
       written.push_back(name);
     }
   }
@@ -90,6 +98,14 @@ void run_deform(DeformCommandOptions& options) {
                        {"deformation", solving},
                        {"total", seconds_since(start)}};
   if (!options.report.empty()) write_text_atomically(options.report, report.dump(2) + "\n");
+  if (!options.html.empty()) {
+    std::vector<std::string> names;
+    for (const std::filesystem::path& file : written) names.push_back(file.filename().string());
+    std::vector<PointConstraints> sets{constraints};
+    if (!options.to.empty()) sets.push_back(second);
+    report::write_html_report(options.html, report::deformation_page(examples.pose(0), shown, names, examples.faces(),
+                                                                     sets, command_line()));
+  }
   std::cout << std::setprecision(4) << written.front().string();
   if (written.size() > 1) std::cout << " .. " << written.back().string();
   std::cout << ": " << constraints.vertices.size() << " constraints, " << examples.pose_count()
@@ -111,6 +127,7 @@ void add_deform_command(CLI::App& app, int& exit_status) {
       ->required();
   command->add_option("-o,--output", options->output, "Deformed pose (OBJ, OFF or PLY)")->required();
   command->add_option("--report", options->report, "Write a JSON report to this file");
+  add_html_option(command, options->html);
   command->add_option("--to", options->to,
                       "Second constraint file: write --frames poses interpolated from the first deformation to "
                       "this one, named OUT-000.EXT, OUT-001.EXT, ...");

@@ -1,6 +1,9 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "html_page.hpp"
+#include "html_report_option.hpp"
 #include "interpolation_flags.hpp"
+#include "job_pages.hpp"
 
 #include <posekit/error.hpp>
 #include <posekit/interpolate.hpp>
@@ -22,6 +25,7 @@ struct InterpolateCommandOptions {
   std::string segmentation;
   std::string save_segmentation;
   std::string report;
+  std::string html;
   InterpolationOptions interpolation;  // from the flags, with the segmentation read
   InterpolationFlags flags;
 };
@@ -93,6 +97,7 @@ std::vector<Eigen::VectorXd> checked_weights(const InterpolateCommandOptions& op
 
 void run_interpolate(InterpolateCommandOptions options, const std::vector<Eigen::VectorXd>& weights) {
   options.interpolation = interpolation_options(options.flags);
+  if (!options.html.empty()) report::check_report_destination(options.html, "--html");
   {
     std::vector<std::string> outputs;
     for (size_t i = 0; i < weights.size(); ++i) {
@@ -132,6 +137,12 @@ void run_interpolate(InterpolateCommandOptions options, const std::vector<Eigen:
     for (size_t i = 0; i < results.size(); ++i) write_mesh(outputs[i], Mesh{results[i], faces});
     if (!options.save_segmentation.empty() && mixit) {
       write_part_labels(options.save_segmentation, interpolator.face_parts());
+    }
+    if (!options.html.empty()) {
+      std::vector<std::string> pose_names;
+      for (const std::string& file : options.poses) pose_names.push_back(std::filesystem::path(file).filename().string());
+      report::write_html_report(options.html, report::interpolation_page(interpolator, pose_names, weights, results,
+                                                                         outputs, command_line()));
     }
     if (!options.report.empty()) {
       const InterpolationOptions& used = interpolator.options();
@@ -215,6 +226,7 @@ void add_interpolate_command(CLI::App& app, int& exit_status) {
   command->add_option("--segmentation", options->segmentation, "Part ids per vertex or per face instead of the automatic segmentation");
   command->add_option("--save-segmentation", options->save_segmentation, "Write the part id of every face used (mixit)");
   command->add_option("--report", options->report, "Write a JSON report (errors, stage times) to this file");
+  add_html_option(command, options->html);
   add_interpolation_flags(command, options->flags);
   command->callback([options, &exit_status] {
     const std::vector<Eigen::VectorXd> weights = checked_weights(*options);  // usage errors: status 2

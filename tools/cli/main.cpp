@@ -1,5 +1,6 @@
 // posekit: the command-line tool.
 #include "commands.hpp"
+#include "html_report_option.hpp"
 
 #include <posekit/version.hpp>
 
@@ -20,6 +21,7 @@ int main(int argc, char** argv) {
   posekit::cli::add_convert_command(app, exit_status);
   posekit::cli::add_generate_command(app, exit_status);
   posekit::cli::add_demo_command(app, exit_status);
+  posekit::cli::set_command_line(argc, argv);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& help) {

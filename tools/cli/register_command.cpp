@@ -1,6 +1,9 @@
 #include "blend_common.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "html_page.hpp"
+#include "html_report_option.hpp"
+#include "job_pages.hpp"
 
 #include <posekit/error.hpp>
 #include <posekit/mesh_io.hpp>
@@ -19,6 +22,7 @@ struct RegisterCommandOptions {
   std::string features;
   std::string output;
   std::string report;
+  std::string html;
   ScanFitOptions fit;
 };
 
@@ -29,6 +33,7 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 void run_register(RegisterCommandOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   mesh_format_from_extension(options.output);
+  if (!options.html.empty()) report::check_report_destination(options.html, "--html");
   const PoseSet examples = read_examples(options.blend);
   std::vector<std::string> warnings;
   const Mesh scan = read_mesh(options.scan, &warnings);
@@ -57,6 +62,11 @@ void run_register(RegisterCommandOptions& options) {
                        {"registration", registration.seconds},
                        {"total", seconds_since(start)}};
   if (!options.report.empty()) write_text_atomically(options.report, report.dump(1) + "\n");
+  if (!options.html.empty()) {
+    report::write_html_report(options.html, report::registration_page(examples.pose(0), registration.deformation.vertices,
+                                                                      examples.faces(), scan.vertices, features,
+                                                                      command_line()));
+  }
   std::cout << std::setprecision(4) << options.output << ": fitted to " << scan.vertices.rows() << " scan vertices ("
             << features.vertices.size() << " features, " << registration.iterations.size()
             << " ICP rounds), scale " << registration.deformation.scale << ", max scan distance " << d.maxCoeff()
@@ -77,6 +87,7 @@ void add_register_command(CLI::App& app, int& exit_status) {
   command->add_option("-o,--output", options->output, "Fitted full mesh (OBJ, OFF or PLY)")->required();
   command->add_option("--report", options->report,
                       "Write a JSON report (with the mesh vertex matched to every scan vertex) to this file");
+  add_html_option(command, options->html);
   add_scan_fit_options(command, options->fit);
   command->callback([options, &exit_status] { exit_status = run_guarded([&] { run_register(*options); }); });
 }

@@ -109,6 +109,9 @@ class PoseInterpolator {
 
   /// The error of `result` against the edge lengths and dihedral angles interpolated with `weights`.
   InterpolationError error(const Eigen::Ref<const Eigen::MatrixX3d>& result, const Eigen::VectorXd& weights) const;
+  /// Per vertex, the largest relative edge-length error of its edges in `result` (see error()).
+  Eigen::VectorXd vertex_edge_length_errors(const Eigen::Ref<const Eigen::MatrixX3d>& result,
+                                            const Eigen::VectorXd& weights) const;
 
   const PoseSet& poses() const;
   const InterpolationOptions& options() const;

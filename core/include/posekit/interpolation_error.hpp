@@ -47,9 +47,17 @@ class InterpolationErrorMeter {
   /// Throws ArgumentError on mismatched sizes.
   InterpolationError measure(const Eigen::Ref<const Eigen::MatrixX3d>& result, const Eigen::VectorXd& weights) const;
 
+  /// Per vertex of `result`, the largest relative edge-length error |l - l*| / l* of its edges (0 for a
+  /// vertex without edges of positive target length): where on the surface the error of measure() lies.
+  Eigen::VectorXd vertex_edge_length_errors(const Eigen::Ref<const Eigen::MatrixX3d>& result,
+                                            const Eigen::VectorXd& weights) const;
+
   const EdgeSpaceCoordinates& coordinates() const { return coordinates_; }
 
  private:
+  /// |l - l*| / l* per edge, NaN where the target length is 0.
+  Eigen::VectorXd edge_length_errors(const Eigen::Ref<const Eigen::MatrixX3d>& result,
+                                     const Eigen::VectorXd& weights) const;
   int flipped_faces(const Eigen::Ref<const Eigen::MatrixX3d>& result) const;
 
   PoseSet poses_;
