@@ -47,6 +47,26 @@ TEST(InterpolationError, PercentilesRankTheWorstEdges) {
   EXPECT_EQ(error.edge_length.p99, 0.0);
 }
 
+TEST(InterpolationError, VertexErrorsLieWhereTheEdgesChanged) {
+  // One vertex moved: it and its neighbours carry the largest relative error of their edges, every
+  // other vertex none; on a uniform scaling every vertex carries the scale.
+  const PoseSet arm = demo_arm({30.0});
+  const InterpolationErrorMeter meter(arm);
+  Eigen::MatrixX3d moved = arm.pose(0);
+  moved.row(10) *= 1.01;
+  const Eigen::VectorXd errors = meter.vertex_edge_length_errors(moved, two_pose_weights(0.0));
+  ASSERT_EQ(errors.size(), arm.vertex_count());
+  EXPECT_NEAR(errors.maxCoeff(), meter.measure(moved, two_pose_weights(0.0)).edge_length.max, 1e-15);
+  EXPECT_GT(errors(10), 1e-3);
+  const int touched = static_cast<int>((errors.array() > 0.0).count());
+  EXPECT_GE(touched, 4);
+  EXPECT_LE(touched, 12);
+  const Eigen::VectorXd scaled = meter.vertex_edge_length_errors(1.1 * arm.pose(0), two_pose_weights(0.0));
+  EXPECT_NEAR(scaled.minCoeff(), 0.1, 1e-12);
+  EXPECT_NEAR(scaled.maxCoeff(), 0.1, 1e-12);
+  EXPECT_THROW(meter.vertex_edge_length_errors(moved, Eigen::VectorXd::Ones(3)), ArgumentError);
+}
+
 TEST(InterpolationError, CatchesCollapsedAndTurnedOverFaces) {
   const PoseSet arm = demo_arm({30.0});
   // Flattened onto the plane y = 0: faces along the side collapse.
