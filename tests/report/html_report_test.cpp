@@ -4,6 +4,8 @@
 #include "headless_browser.hpp"
 #include "test_data.hpp"
 
+#include <posekit/mesh_io.hpp>
+
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -98,6 +100,24 @@ TEST_F(HtmlReport, InterpolationDeformationAndRegistrationReportsOpen) {
   ASSERT_EQ(deformed.exit_status, 0) << deformed.err;
   expect_opens_cleanly(output("deformed.html"));
   EXPECT_NE(read_text(output("deformed.html")).find("\"markers\""), std::string::npos);
+
+  // The 60-degree pose as the scan, three of its vertices as features.
+  const Mesh scan = read_mesh(pose("bent-060"));
+  {
+    std::ofstream features(output("features.txt"));
+    for (const int v : {0, 1000, 2000}) {
+      features << v << " " << scan.vertices(v, 0) << " " << scan.vertices(v, 1) << " " << scan.vertices(v, 2) << "\n";
+    }
+  }
+  const CommandResult registered =
+      run_posekit({"register", "--examples", pose("rest"), pose("bent-090"), "--scan", pose("bent-060"), "--features",
+                   output("features.txt").string(), "-o", output("registered.obj").string(), "--html",
+                   output("registered.html").string()});
+  ASSERT_EQ(registered.exit_status, 0) << registered.err;
+  expect_opens_cleanly(output("registered.html"));
+  const std::string page = read_text(output("registered.html"));
+  EXPECT_NE(page.find("\"points\""), std::string::npos);
+  EXPECT_NE(page.find("\"markers\""), std::string::npos);
 }
 
 TEST_F(HtmlReport, IsNotWrittenWhenTheJobFails) {
