@@ -35,10 +35,5 @@ ${body}    ;
 ")
 
 # Rewrite only when the text changed, so that an unchanged kernel does not rebuild the library.
-if(EXISTS "${OUTPUT}")
-  file(READ "${OUTPUT}" previous)
-  if(previous STREQUAL content)
-    return()
-  endif()
-endif()
-file(WRITE "${OUTPUT}" "${content}")
+include(${CMAKE_CURRENT_LIST_DIR}/../../cmake/PosekitWriteIfChanged.cmake)
+posekit_write_if_changed("${OUTPUT}" "${content}")

@@ -108,13 +108,18 @@ int InterpolationErrorMeter::flipped_faces(const Eigen::Ref<const Eigen::MatrixX
   return flipped;
 }
 
-InterpolationError InterpolationErrorMeter::measure(const Eigen::Ref<const Eigen::MatrixX3d>& result,
-                                                    const Eigen::VectorXd& weights) const {
+void InterpolationErrorMeter::check_arguments(const Eigen::Ref<const Eigen::MatrixX3d>& result,
+                                              const Eigen::VectorXd& weights) const {
   if (weights.size() != coordinates_.pose_count()) {
     throw ArgumentError("interpolation error: " + std::to_string(weights.size()) + " weights for " +
                         std::to_string(coordinates_.pose_count()) + " poses");
   }
   check_face_indices(faces_, static_cast<int>(result.rows()));
+}
+
+InterpolationError InterpolationErrorMeter::measure(const Eigen::Ref<const Eigen::MatrixX3d>& result,
+                                                    const Eigen::VectorXd& weights) const {
+  check_arguments(result, weights);
   InterpolationError error;
   if (!result.allFinite()) {
     error.finite = false;
@@ -160,11 +165,7 @@ Eigen::VectorXd InterpolationErrorMeter::edge_length_errors(const Eigen::Ref<con
 
 Eigen::VectorXd InterpolationErrorMeter::vertex_edge_length_errors(const Eigen::Ref<const Eigen::MatrixX3d>& result,
                                                                    const Eigen::VectorXd& weights) const {
-  if (weights.size() != coordinates_.pose_count()) {
-    throw ArgumentError("interpolation error: " + std::to_string(weights.size()) + " weights for " +
-                        std::to_string(coordinates_.pose_count()) + " poses");
-  }
-  check_face_indices(faces_, static_cast<int>(result.rows()));
+  check_arguments(result, weights);
   const Eigen::VectorXd errors = edge_length_errors(result, weights);
   Eigen::VectorXd largest = Eigen::VectorXd::Zero(result.rows());
   for (Eigen::Index e = 0; e < errors.size(); ++e) {

@@ -20,6 +20,8 @@
 
 #include "correct/contact_separation.hpp"
 
+#include "crane_frames.hpp"
+
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -130,15 +132,12 @@ const bool registered = [] {
 
 // range(0): 1 to carry a frame's correction to the next, 0 to correct every frame alone.
 void BM_CorrectCraneSequence(benchmark::State& state) {
-  std::vector<Eigen::MatrixX3d> frames;
-  for (int frame = 0; frame < 175; ++frame) {
-    char name[48];
-    std::snprintf(name, sizeof name, "crane-sequence/crane-%04d.obj", frame);
-    if (!std::filesystem::exists(shared_data() / name)) {
-      state.SkipWithError((std::string("shared pose data not found: ") + name).c_str());
-      return;
-    }
-    frames.push_back(read_mesh(shared_data() / name).vertices);
+  std::vector<std::string> names;
+  std::string missing;
+  const std::vector<Eigen::MatrixX3d> frames = read_crane_frames(shared_data(), names, missing);
+  if (frames.empty()) {
+    state.SkipWithError(("shared pose data not found: " + missing).c_str());
+    return;
   }
   const Mesh reference = read_mesh(shared_data() / "crane-sequence/crane-0014.obj");
   const std::unique_ptr<Device> device = make_cpu_device();

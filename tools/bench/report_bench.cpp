@@ -1,5 +1,6 @@
 // HTML reports: building the page of a correction (lion-01) and of a whole captured sequence (the
 // crane's 175 frames), from the intersection tests of every pose shown to the page's bytes.
+#include "crane_frames.hpp"
 #include "html_page.hpp"
 #include "job_pages.hpp"
 
@@ -10,7 +11,6 @@
 
 #include <benchmark/benchmark.h>
 
-#include <cstdio>
 #include <filesystem>
 
 namespace posekit {
@@ -45,17 +45,12 @@ BENCHMARK(BM_CorrectionPage)->Unit(benchmark::kMillisecond);
 // Every frame's result differs from its target (one vertex moved), so that every pose is tested and
 // stored: the largest page a sequence of this length gives.
 void BM_SequencePage(benchmark::State& state) {
-  std::vector<Eigen::MatrixX3d> frames;
   std::vector<std::string> names;
-  for (int frame = 0; frame < 175; ++frame) {
-    char name[48];
-    std::snprintf(name, sizeof name, "crane-sequence/crane-%04d.obj", frame);
-    if (!std::filesystem::exists(shared_data() / name)) {
-      state.SkipWithError((std::string("shared pose data not found: ") + name).c_str());
-      return;
-    }
-    frames.push_back(read_mesh(shared_data() / name).vertices);
-    names.push_back(std::filesystem::path(name).filename().string());
+  std::string missing;
+  const std::vector<Eigen::MatrixX3d> frames = read_crane_frames(shared_data(), names, missing);
+  if (frames.empty()) {
+    state.SkipWithError(("shared pose data not found: " + missing).c_str());
+    return;
   }
   const Mesh reference = read_mesh(shared_data() / "crane-sequence/crane-0014.obj");
   SequenceReport report;

@@ -55,6 +55,8 @@ class InterpolationErrorMeter {
   const EdgeSpaceCoordinates& coordinates() const { return coordinates_; }
 
  private:
+  /// Throws ArgumentError unless there is one weight per pose and the faces index `result`'s vertices.
+  void check_arguments(const Eigen::Ref<const Eigen::MatrixX3d>& result, const Eigen::VectorXd& weights) const;
   /// |l - l*| / l* per edge, NaN where the target length is 0.
   Eigen::VectorXd edge_length_errors(const Eigen::Ref<const Eigen::MatrixX3d>& result,
                                      const Eigen::VectorXd& weights) const;
