@@ -71,7 +71,7 @@ set(POSEKIT_LAYER_correct_USES geometry device interpolate)
 set(POSEKIT_LAYER_blend_FOLDERS core/blend)
 set(POSEKIT_LAYER_blend_HEADERS
   blend_dictionary blend_files blended_deformation feature_correspondence laplace_beltrami
-  partial_registration rotation_clusters)
+  partial_registration rotation_clusters skinning_decomposition)
 set(POSEKIT_LAYER_blend_USES geometry)
 
 # posekit_layer_closure(<out-var> <layer>): the layer and every layer it uses, directly or not.

@@ -273,6 +273,10 @@ void check_point_count(const std::string& function, size_t vertices, Eigen::Inde
 // The deformer of `set`: from the given skinning weights, or from the options' eigenfunctions.
 BlendedDeformer deformer_of(const PoseSet& set, const cli::BlendCommandOptions& options, const Eigen::MatrixXd& skinning) {
   if (skinning.size() == 0) return cli::make_deformer(set, options);
+  if (options.dictionary != "lbo") {
+    throw ArgumentError("weights are a dictionary of their own; they cannot be combined with dictionary=" +
+                        options.dictionary);
+  }
   BlendOptions blend = options.blend;
   blend.estimate_scale = !options.no_scale;
   return BlendedDeformer(set, skinning, blend);

@@ -91,6 +91,7 @@ void BlendedDeformer::set_constraints(const std::vector<LinearConstraint>& const
   s.global_matrix = std::move(global_matrix);
   s.initial = std::move(initial);
   s.global = std::move(global);
+  if (s.richer) s.richer->set_constraints(constraints);
 }
 
 void BlendedDeformer::add_constraint(const LinearConstraint& constraint) {
@@ -107,6 +108,7 @@ void BlendedDeformer::add_constraint(const LinearConstraint& constraint) {
   s.rows.bottomRows(1) = row;
   s.row_weights.conservativeResize(s.row_weights.size() + 1);
   s.row_weights(s.row_weights.size() - 1) = weight;
+  if (s.richer) s.richer->add_constraint(constraint);
 }
 
 void BlendedDeformer::remove_constraint(int index) {
@@ -123,6 +125,7 @@ void BlendedDeformer::remove_constraint(int index) {
   s.row_weights.segment(index, tail) = s.row_weights.tail(tail).eval();
   s.row_weights.conservativeResize(count - 1);
   s.constraints.erase(s.constraints.begin() + index);
+  if (s.richer) s.richer->remove_constraint(index);
 }
 
 void BlendedDeformer::replace_constraint(int index, const LinearConstraint& constraint) {
@@ -139,6 +142,7 @@ void BlendedDeformer::replace_constraint(int index, const LinearConstraint& cons
   s.rows.row(index) = row;
   s.row_weights(index) = weight;
   s.constraints[static_cast<size_t>(index)] = constraint;
+  if (s.richer) s.richer->replace_constraint(index, constraint);
 }
 
 int BlendedDeformer::constraint_count() const { return static_cast<int>(state_->constraints.size()); }

@@ -36,6 +36,8 @@ void check_options(const BlendOptions& o) {
   if (!(o.sparsity >= 0.0 && o.sparsity < 1.0)) fail("sparsity must lie in [0, 1)");
   if (o.average_iterations < 0 || o.minimal_iterations < 0) fail("iteration counts must be >= 0");
   if (!(o.tolerance >= 0.0) || !std::isfinite(o.tolerance)) fail("tolerance must be finite and >= 0");
+  if (o.trial_examples < 1 || o.trial_points < 1) fail("trial_examples and trial_points must be >= 1");
+  if (o.skeleton_average_iterations < 0 || o.skeleton_minimal_iterations < 0) fail("iteration counts must be >= 0");
 }
 
 // Rotation and translation (mass-weighted Kabsch) that carry `moving` onto `fixed`.
@@ -88,12 +90,36 @@ Eigen::MatrixXd arap_matrix(const Eigen::SparseMatrix<double>& laplacian, const 
 
 }  // namespace
 
+const char* dictionary_choice_name(DictionaryChoice choice) {
+  switch (choice) {
+    case DictionaryChoice::skeleton:
+      return "skeleton";
+    case DictionaryChoice::automatic:
+      return "auto";
+    case DictionaryChoice::lbo:
+      break;
+  }
+  return "lbo";
+}
+
 void BlendedDeformer::build(const PoseSet& examples, const Eigen::MatrixXd* skinning_weights,
+                            const SkinningDecomposition* skinning, const std::vector<int>* clusters,
                             const BlendOptions& options) {
   const Clock::time_point start = Clock::now();
   State& s = *state_;
   check_options(options);
   if (examples.pose_count() < 1) throw ArgumentError("blended deformation needs at least one example pose");
+  if (skinning_weights != nullptr && options.dictionary != DictionaryChoice::lbo) {
+    throw ArgumentError("blend options: skinning weights are the dictionary; the " +
+                        std::string(dictionary_choice_name(options.dictionary)) + " dictionary cannot be chosen with them");
+  }
+  if (skinning != nullptr && (skinning->vertex_count() != examples.vertex_count() ||
+                              skinning->example_count() != examples.pose_count())) {
+    throw ArgumentError("the skinning decomposition has " + std::to_string(skinning->vertex_count()) + " vertices and " +
+                        std::to_string(skinning->example_count()) + " examples for " +
+                        std::to_string(examples.vertex_count()) + " vertices and " +
+                        std::to_string(examples.pose_count()) + " examples");
+  }
   s.options = options;
   s.faces = examples.faces();
   const int vertex_count = examples.vertex_count();
@@ -146,12 +172,21 @@ void BlendedDeformer::build(const PoseSet& examples, const Eigen::MatrixXd* skin
   stage = Clock::now();
   // The reduction removes what the examples repeat; it keeps at least one example's worth of atoms
   // (4m), and always the four of the reference with a constant weight, so that any affine map of the
-  // reference stays in the space.
+  // reference stays in the space. A local weight (one that vanishes on part of the mesh, as a bone's
+  // does) keeps the reference's four atoms too: its atoms say nothing of the other weights', so
+  // k-medoids would drop some bones' atoms altogether (measured: the skeleton dictionary's error with
+  // 20 points doubled on the horse).
   const BlendDictionary full(poses, weights);
   const int per_example = 4 * full.weight_count();
   const int kept = std::max(std::min(per_example, full.atom_count()),
                             static_cast<int>(std::lround(options.atom_fraction * full.atom_count())));
   std::vector<int> keep;
+  for (int j = 0; j < full.weight_count(); ++j) {
+    const Eigen::Index zeros = (weights.col(j).array() == 0.0).count();
+    if (zeros * 100 >= vertex_count) {
+      for (int a = 0; a < 4; ++a) keep.push_back(4 * j + a);  // example 0 comes first in the full dictionary
+    }
+  }
   for (int j = 0; j < full.weight_count(); ++j) {
     const double first = weights(0, j);
     if (first != 0.0 && (weights.col(j).array() - first).abs().maxCoeff() <= 1e-9 * std::abs(first)) {
@@ -165,7 +200,9 @@ void BlendedDeformer::build(const PoseSet& examples, const Eigen::MatrixXd* skin
 
   // Rotation clusters.
   stage = Clock::now();
-  if (skinning_weights != nullptr && options.rotation_clusters == 0) {
+  if (clusters != nullptr) {
+    s.clusters = *clusters;
+  } else if (skinning_weights != nullptr && options.rotation_clusters == 0) {
     s.clusters = weight_clusters(weights);
   } else {
     const int count = std::min(vertex_count, std::max(1, options.rotation_clusters));
@@ -227,33 +264,95 @@ void BlendedDeformer::build(const PoseSet& examples, const Eigen::MatrixXd* skin
   s.report.atoms = n_atoms;
   s.report.clusters = nc;
   s.report.reference_area = area;
+  s.report.dictionary = skinning_weights != nullptr ? "weights" : "lbo";
+
+  bool use_skeleton = options.dictionary == DictionaryChoice::skeleton;
+  if (options.dictionary == DictionaryChoice::automatic) {
+    stage = Clock::now();
+    use_skeleton = skeleton_rebuilds_better(examples, options, s.report);
+    s.report.seconds.trial = seconds_since(stage);
+  }
+  if (options.dictionary != DictionaryChoice::lbo) {
+    stage = Clock::now();
+    if (use_skeleton || skinning != nullptr) {
+      s.skinning = std::make_unique<SkinningDecomposition>(skinning != nullptr ? *skinning
+                                                                               : decompose_skinning(examples, options.skinning));
+      s.report.bones = s.skinning->bone_count();
+      s.report.skinning_error = s.skinning->rms_error;
+    }
+    s.report.seconds.skinning = seconds_since(stage);
+    if (use_skeleton) {
+      BlendOptions richer = options;
+      richer.dictionary = DictionaryChoice::lbo;
+      richer.average_iterations = options.skeleton_average_iterations;
+      richer.minimal_iterations = options.skeleton_minimal_iterations;
+      Eigen::MatrixXd richer_weights = s.skinning->weights;
+      if (options.skeleton_keeps_eigenfunctions) {
+        richer_weights.resize(vertex_count, weights.cols() + s.skinning->weights.cols());
+        richer_weights << weights, s.skinning->weights;
+      }
+      const std::vector<int> bone_clusters = weight_clusters(s.skinning->weights);  // one per bone
+      s.richer.reset(new BlendedDeformer());
+      s.richer->build(examples, &richer_weights, nullptr, &bone_clusters, richer);
+      s.change = std::make_unique<DictionaryChange>(s.dictionary, s.richer->dictionary(), mass);
+      const BlendSetupReport& r = s.richer->setup_report();
+      s.report.dictionary = "skeleton";
+      s.report.weights = r.weights;
+      s.report.full_atoms = r.full_atoms;
+      s.report.atoms = r.atoms;
+      s.report.clusters = r.clusters;
+      s.report.seconds.weights += r.seconds.weights;
+      s.report.seconds.dictionary += r.seconds.dictionary;
+      s.report.seconds.clusters += r.seconds.clusters;
+      s.report.seconds.system += r.seconds.system;
+    }
+  }
   s.report.seconds.total = seconds_since(start);
 }
 
 BlendedDeformer::BlendedDeformer(const PoseSet& examples, const BlendOptions& options) : state_(std::make_unique<State>()) {
-  build(examples, nullptr, options);
+  build(examples, nullptr, nullptr, nullptr, options);
+}
+
+BlendedDeformer::BlendedDeformer(const PoseSet& examples, const SkinningDecomposition& skinning,
+                                 const BlendOptions& options)
+    : state_(std::make_unique<State>()) {
+  build(examples, nullptr, &skinning, nullptr, options);
 }
 
 BlendedDeformer::BlendedDeformer(const PoseSet& examples, const Eigen::MatrixXd& skinning_weights,
                                  const BlendOptions& options)
     : state_(std::make_unique<State>()) {
-  build(examples, &skinning_weights, options);
+  build(examples, &skinning_weights, nullptr, nullptr, options);
 }
 
+BlendedDeformer::BlendedDeformer() : state_(std::make_unique<State>()) {}
 BlendedDeformer::~BlendedDeformer() = default;
 BlendedDeformer::BlendedDeformer(BlendedDeformer&&) noexcept = default;
 BlendedDeformer& BlendedDeformer::operator=(BlendedDeformer&&) noexcept = default;
 
 const BlendOptions& BlendedDeformer::options() const { return state_->options; }
 const BlendSetupReport& BlendedDeformer::setup_report() const { return state_->report; }
-const BlendDictionary& BlendedDeformer::dictionary() const { return state_->dictionary; }
+const BlendDictionary& BlendedDeformer::dictionary() const {
+  return state_->richer ? state_->richer->dictionary() : state_->dictionary;
+}
 const Eigen::MatrixX3i& BlendedDeformer::faces() const { return state_->faces; }
 int BlendedDeformer::vertex_count() const { return state_->dictionary.vertex_count(); }
 int BlendedDeformer::example_count() const { return state_->example_count(); }
-int BlendedDeformer::cluster_count() const { return state_->cluster_count; }
-const std::vector<int>& BlendedDeformer::clusters() const { return state_->clusters; }
+int BlendedDeformer::cluster_count() const {
+  return state_->richer ? state_->richer->cluster_count() : state_->cluster_count;
+}
+const std::vector<int>& BlendedDeformer::clusters() const {
+  return state_->richer ? state_->richer->clusters() : state_->clusters;
+}
+const SkinningDecomposition* BlendedDeformer::skinning() const { return state_->skinning.get(); }
 
 Eigen::MatrixX3d BlendedDeformer::vertices(const Eigen::Ref<const Eigen::MatrixX3d>& transformations) const {
+  if (state_->richer) return state_->richer->vertices(transformations);
+  return own_vertices(transformations);
+}
+
+Eigen::MatrixX3d BlendedDeformer::own_vertices(const Eigen::Ref<const Eigen::MatrixX3d>& transformations) const {
   const State& s = *state_;
   if (transformations.rows() != s.atom_count()) {
     throw ArgumentError("BlendedDeformer::vertices: " + std::to_string(transformations.rows()) +

@@ -12,6 +12,7 @@
 namespace posekit {
 
 Eigen::MatrixX3d BlendedDeformer::interpolate(const BlendResult& a, const BlendResult& b, double t) const {
+  if (state_->richer) return state_->richer->interpolate(a, b, t);
   const State& s = *state_;
   if (!(t >= 0.0 && t <= 1.0)) throw ArgumentError("interpolate: t must lie in [0, 1]");
   const size_t blocks = static_cast<size_t>(s.block_count());

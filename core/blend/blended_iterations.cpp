@@ -154,7 +154,8 @@ bool converged(double previous, double current, double tolerance) {
 
 }  // namespace
 
-BlendResult BlendedDeformer::deform(const Eigen::Ref<const Eigen::MatrixX3d>& targets) const {
+BlendResult BlendedDeformer::deform_in_own_dictionary(const Eigen::Ref<const Eigen::MatrixX3d>& targets,
+                                                      bool vertices) const {
   const State& s = *state_;
   const Clock::time_point start = Clock::now();
   const Eigen::MatrixX3d p = s.internal_targets(targets);
@@ -165,14 +166,15 @@ BlendResult BlendedDeformer::deform(const Eigen::Ref<const Eigen::MatrixX3d>& ta
   double initial_energy = 0.0;
   result.transformations = s.initial_solve(constraint_side, initial_energy);
   result.iterations.push_back({"initial", constant + initial_energy, 1.0, -1});
-  BlendResult continued = deform(targets, result);
+  BlendResult continued = continue_in_own_dictionary(targets, result, -1, -1, vertices);
   continued.iterations.insert(continued.iterations.begin(), result.iterations.front());
   continued.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return continued;
 }
 
-BlendResult BlendedDeformer::deform(const Eigen::Ref<const Eigen::MatrixX3d>& targets, const BlendResult& start_from,
-                                    int average_iterations, int minimal_iterations) const {
+BlendResult BlendedDeformer::continue_in_own_dictionary(const Eigen::Ref<const Eigen::MatrixX3d>& targets,
+                                                        const BlendResult& start_from, int average_iterations,
+                                                        int minimal_iterations, bool vertices) const {
   const State& s = *state_;
   const Clock::time_point start = Clock::now();
   if (start_from.transformations.rows() != s.atom_count()) {
@@ -323,9 +325,33 @@ BlendResult BlendedDeformer::deform(const Eigen::Ref<const Eigen::MatrixX3d>& ta
   result.scale = current.scale;
   result.closest_example = current.example;
   result.energy = current.energy;
-  result.vertices = vertices(result.transformations);
+  if (vertices) result.vertices = own_vertices(result.transformations);
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;
+}
+
+BlendResult BlendedDeformer::deform(const Eigen::Ref<const Eigen::MatrixX3d>& targets) const {
+  const State& s = *state_;
+  if (!s.richer) return deform_in_own_dictionary(targets);
+  // The paper's schedule for articulated shapes: the smooth Laplace-Beltrami dictionary finds the
+  // pose, the skeleton dictionary (least squares change, then its own iterations) its stiff parts.
+  const Clock::time_point start = Clock::now();
+  const BlendResult first = deform_in_own_dictionary(targets, false);
+  BlendResult seed;
+  seed.transformations = (*s.change)(first.transformations);
+  seed.iterations = first.iterations;
+  BlendResult result = s.richer->deform(targets, seed);
+  for (BlendIteration& it : result.iterations) it.stage = "skeleton " + it.stage;
+  result.iterations.insert(result.iterations.begin(), first.iterations.begin(), first.iterations.end());
+  result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return result;
+}
+
+BlendResult BlendedDeformer::deform(const Eigen::Ref<const Eigen::MatrixX3d>& targets, const BlendResult& start_from,
+                                    int average_iterations, int minimal_iterations) const {
+  const State& s = *state_;
+  if (s.richer) return s.richer->deform(targets, start_from, average_iterations, minimal_iterations);
+  return continue_in_own_dictionary(targets, start_from, average_iterations, minimal_iterations);
 }
 
 }  // namespace posekit

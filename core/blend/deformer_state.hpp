@@ -8,6 +8,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 
+#include <memory>
 #include <vector>
 
 namespace posekit {
@@ -36,6 +37,11 @@ struct BlendedDeformer::State {
   Eigen::MatrixXd global_matrix;   // base_global + rows^T W rows
   Eigen::LLT<Eigen::MatrixXd> initial;
   Eigen::LLT<Eigen::MatrixXd> global;
+
+  // The skeleton dictionary deformations change to, and the change (both null without one).
+  std::unique_ptr<SkinningDecomposition> skinning;
+  std::unique_ptr<BlendedDeformer> richer;
+  std::unique_ptr<DictionaryChange> change;
 
   int atom_count() const { return static_cast<int>(d.cols()); }
   int example_count() const { return dictionary.example_count(); }

@@ -97,6 +97,65 @@ TEST_F(BlendFiles, DeformWritesThePoseAndAReport) {
   EXPECT_GT(json["seconds"]["deformation"].get<double>(), 0.0);
 }
 
+TEST_F(BlendFiles, DeformWithTheSkeletonDictionaryWritesAndReusesItsSkinningCache) {
+  const std::string constraints = write("c.txt", constraint_text(truth, points));
+  const std::string output = (output_folder / "pose.obj").string();
+  const std::string report = (output_folder / "report.json").string();
+  const std::string cache = (output_folder / "skinning.txt").string();
+  std::vector<std::string> arguments = deform_arguments(constraints, output);
+  arguments.insert(arguments.end(), {"--dictionary", "skeleton", "--skinning-cache", cache, "--report", report});
+  CommandResult result = run_posekit(arguments);
+  ASSERT_EQ(result.exit_status, 0) << result.err;
+  ASSERT_TRUE(std::filesystem::exists(cache));
+  EXPECT_LT(distortion(read_mesh(output).vertices, truth, faces), 0.03);
+  nlohmann::json json = nlohmann::json::parse(std::ifstream(report));
+  EXPECT_EQ(json["setup"]["dictionary"], "skeleton");
+  const int bones = json["setup"]["bones"].get<int>();
+  EXPECT_GE(bones, 2);
+  EXPECT_EQ(json["deformation"]["iterations"].back()["stage"].get<std::string>().rfind("skeleton ", 0), 0u);
+  const auto written = std::filesystem::last_write_time(cache);
+  // The second run reads the cache instead of decomposing again.
+  result = run_posekit(arguments);
+  ASSERT_EQ(result.exit_status, 0) << result.err;
+  EXPECT_EQ(std::filesystem::last_write_time(cache), written);
+  json = nlohmann::json::parse(std::ifstream(report));
+  EXPECT_EQ(json["setup"]["bones"].get<int>(), bones);
+  // Another example set with the same cache: one line naming the cache, nothing written.
+  std::filesystem::remove(output);
+  std::vector<std::string> fewer = {"deform", "--examples", examples[0], examples[1], examples[2], "--constraints",
+                                    constraints, "-o", output, "--dictionary", "skeleton", "--skinning-cache", cache};
+  result = run_posekit(fewer);
+  EXPECT_EQ(result.exit_status, 1);
+  EXPECT_EQ(result.err_lines().size(), 1u) << result.err;
+  EXPECT_NE(result.err.find("skinning.txt:"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find("other example poses"), std::string::npos) << result.err;
+  EXPECT_FALSE(std::filesystem::exists(output));
+}
+
+TEST_F(BlendFiles, DeformRefusesDictionaryOptionsThatCannotWork) {
+  const std::string constraints = write("c.txt", constraint_text(truth, points));
+  const std::string output = (output_folder / "pose.obj").string();
+  const auto refused = [&](std::vector<std::string> extra, const std::string& expected,
+                           std::vector<std::string> arguments) {
+    arguments.insert(arguments.end(), extra.begin(), extra.end());
+    const CommandResult result = run_posekit(arguments);
+    EXPECT_EQ(result.exit_status, 1) << result.err;
+    EXPECT_EQ(result.err_lines().size(), 1u) << result.err;
+    EXPECT_NE(result.err.find(expected), std::string::npos) << result.err;
+  };
+  // A skeleton from one example: there is no motion to learn bones from.
+  refused({"--dictionary", "skeleton"}, "needs at least two",
+          {"deform", "--examples", examples[0], "--constraints", constraints, "-o", output});
+  refused({"--dictionary", "skeleton", "--weights", write("w.txt", "1\n")}, "--weights",
+          deform_arguments(constraints, output));
+  refused({"--dictionary", "skeleton", "--bones", "100000"}, "--bones 100000", deform_arguments(constraints, output));
+  refused({"--skinning-cache", (output_folder / "s.txt").string()}, "--dictionary skeleton or auto",
+          deform_arguments(constraints, output));
+  refused({"--dictionary", "skeleton", "--skinning-cache", write("bad.txt", "hello\n")}, "bad.txt:1:",
+          deform_arguments(constraints, output));
+  EXPECT_TRUE(output_empty());
+}
+
 TEST_F(BlendFiles, DeformMatchesGroupedFeaturesAutomatically) {
   // The last two constraints (a vertex half way along the first bone and the far tip) are listed with
   // each other's positions, in one group.

@@ -194,6 +194,22 @@ def test_deform_like_the_command_line(arm, tmp_path):
         posekit.deform([V0, V1], F, [V0.shape[0]], positions[:1])
 
 
+def test_deform_with_the_skeleton_dictionary(arm, tmp_path):
+    V0, F = posekit.read_mesh(str(arm["rest"]))
+    V1, _ = posekit.read_mesh(str(arm["bent"]))
+    V2, _ = posekit.read_mesh(str(arm["frames"][2]))
+    vertices = [0, V0.shape[0] // 3, V0.shape[0] // 2, V0.shape[0] - 1]
+    cache = tmp_path / "skinning.txt"
+    V_out, report = posekit.deform([V0, V1, V2], F, vertices, V2[vertices], dictionary="skeleton",
+                                   skinning_cache=str(cache))
+    assert report["setup"]["dictionary"] == "skeleton" and report["setup"]["bones"] >= 2
+    assert cache.is_file() and np.isfinite(V_out).all()
+    with pytest.raises(ValueError, match="dictionary"):
+        posekit.deform([V0, V1], F, vertices, V1[vertices], dictionary="bones")
+    with pytest.raises(ValueError, match="weights"):
+        posekit.deform([V0, V1], F, vertices, V1[vertices], weights=np.ones((V0.shape[0], 1)), dictionary="skeleton")
+
+
 def test_register_like_the_command_line(arm, tmp_path):
     V0, F = posekit.read_mesh(str(arm["rest"]))
     V1, _ = posekit.read_mesh(str(arm["bent"]))

@@ -6,6 +6,7 @@
 #include <posekit/geometry.hpp>
 #include <posekit/mesh_io.hpp>
 #include <posekit/partial_registration.hpp>
+#include <posekit/skinning_decomposition.hpp>
 #include <posekit/topology.hpp>
 
 #include "test_data.hpp"
@@ -13,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <queue>
 
 namespace posekit {
@@ -156,6 +158,47 @@ TEST_P(BlendRealSet, ReconstructsAndRegistersTheFirstPose) {
   }
   EXPECT_GT(static_cast<double>(good) / static_cast<double>(original.size()), c.correct_fraction)
       << "removed " << gone / areas.sum();
+}
+
+// The skinning decomposition of the ten horse poses, and the skeleton dictionary made from it: the
+// bounds sit above what posekit_blend_evaluation and posekit_blend_bench measure.
+TEST(SkeletonRealPoses, HorseBonesFitTheExamplesAndTheirDictionaryRebuildsAPose) {
+  const auto data = testing::shared_data();
+  if (!data || !std::filesystem::exists(*data / "horse-poses")) GTEST_SKIP() << "shared pose data not found: horse-poses";
+  std::vector<std::filesystem::path> files;
+  for (int k = 1; k <= 10; ++k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "horse-%02d.obj", k);
+    files.push_back(*data / "horse-poses" / name);
+  }
+  const PoseSet all = read_pose_set(files);
+  const SkinningDecomposition skinning = decompose_skinning(all);
+  EXPECT_NO_THROW(check_skinning_decomposition(skinning));
+  EXPECT_LE(skinning.bone_count(), SkinningOptions{}.max_bones);
+  EXPECT_LT(skinning.rms_error, 0.01);
+  EXPECT_EQ(std::count(skinning.parents.begin(), skinning.parents.end(), -1), 1);
+
+  // horse-01 from the other nine and 20 of its vertices, with the skeleton dictionary.
+  PoseSet examples(all.faces());
+  for (int k = 1; k < 10; ++k) examples.add_pose(all.pose(k));
+  BlendOptions options;
+  options.dictionary = DictionaryChoice::skeleton;
+  BlendedDeformer deformer(examples, options);
+  ASSERT_EQ(deformer.setup_report().dictionary, "skeleton");
+  const Eigen::MatrixX3d& truth = all.pose(0);
+  const std::vector<int> twenty = farthest_point_samples(truth, 20);
+  std::vector<LinearConstraint> constraints;
+  Eigen::MatrixX3d positions(20, 3);
+  for (int r = 0; r < 20; ++r) {
+    constraints.push_back(LinearConstraint::vertex(twenty[static_cast<size_t>(r)]));
+    positions.row(r) = truth.row(twenty[static_cast<size_t>(r)]);
+  }
+  deformer.set_constraints(constraints);
+  const Eigen::VectorXd error = (deformer.deform(positions).vertices - truth).rowwise().norm();
+  std::vector<double> sorted(error.data(), error.data() + error.size());
+  std::sort(sorted.begin(), sorted.end());
+  EXPECT_LT(sorted[static_cast<size_t>(0.95 * static_cast<double>(sorted.size() - 1) + 0.5)] / bounding_box_diagonal(truth),
+            0.05);
 }
 
 INSTANTIATE_TEST_SUITE_P(Sets, BlendRealSet,

@@ -1,7 +1,8 @@
 // Example-based deformation after precomputation: one deformation from 10 point constraints (the
 // interactive case) and its final vertex evaluation, one constraint replaced by a rank-one update against a full refactorization,
 // one interpolated frame. On the horse (horse-01.. as examples, horse-10's vertices as targets) with
-// 4 and 9 examples when ../shared/data is present, and on the generated demo arm.
+// 4 and 9 examples when ../shared/data is present, and on the generated demo arm. The same deformation
+// with the skeleton dictionary, and the skinning decomposition behind it (the 10 horse poses).
 #include <posekit/blended_deformation.hpp>
 #include <posekit/demo_shape.hpp>
 #include <posekit/geometry.hpp>
@@ -42,22 +43,29 @@ void constrain(Case& c, int count) {
 }
 
 // Built once per example count and kept: the precomputation is not what is measured.
-Case* horse(int examples) {
-  static std::map<int, std::unique_ptr<Case>> cache;
-  auto& slot = cache[examples];
-  if (slot) return slot.get();
+std::vector<std::filesystem::path> horse_files(int count) {
   const std::filesystem::path folder = std::filesystem::path(POSEKIT_BENCH_DATA_DIR) / "horse-poses";
-  if (!std::filesystem::exists(folder / "horse-10.obj")) return nullptr;
   std::vector<std::filesystem::path> files;
-  for (int k = 1; k <= examples; ++k) {
+  for (int k = 1; k <= count; ++k) {
     char name[32];
     std::snprintf(name, sizeof name, "horse-%02d.obj", k);
     files.push_back(folder / name);
   }
+  return files;
+}
+
+Case* horse(int examples, DictionaryChoice dictionary = DictionaryChoice::lbo) {
+  static std::map<std::pair<int, DictionaryChoice>, std::unique_ptr<Case>> cache;
+  auto& slot = cache[{examples, dictionary}];
+  if (slot) return slot.get();
+  const std::filesystem::path folder = std::filesystem::path(POSEKIT_BENCH_DATA_DIR) / "horse-poses";
+  if (!std::filesystem::exists(folder / "horse-10.obj")) return nullptr;
   slot = std::make_unique<Case>();
-  slot->examples = read_pose_set(files);
+  slot->examples = read_pose_set(horse_files(examples));
   slot->target = read_mesh(folder / "horse-10.obj").vertices;
-  slot->deformer = std::make_unique<BlendedDeformer>(slot->examples);
+  BlendOptions options;
+  options.dictionary = dictionary;
+  slot->deformer = std::make_unique<BlendedDeformer>(slot->examples, options);
   constrain(*slot, 10);
   return slot.get();
 }
@@ -82,6 +90,7 @@ void report_sizes(benchmark::State& state, const Case& c) {
   state.counters["examples"] = r.examples;
   state.counters["atoms"] = r.atoms;
   state.counters["clusters"] = r.clusters;
+  state.counters["bones"] = r.bones;
   state.counters["setup_s"] = r.seconds.total;
 }
 
@@ -101,6 +110,29 @@ void deform(benchmark::State& state, Case* c) {
 
 void BM_DeformHorse(benchmark::State& state) { deform(state, horse(static_cast<int>(state.range(0)))); }
 BENCHMARK(BM_DeformHorse)->Arg(4)->Arg(9)->Unit(benchmark::kMillisecond)->ComputeStatistics("min", minimum);
+
+void BM_DeformHorseSkeleton(benchmark::State& state) {
+  deform(state, horse(static_cast<int>(state.range(0)), DictionaryChoice::skeleton));
+}
+BENCHMARK(BM_DeformHorseSkeleton)->Arg(4)->Arg(9)->Unit(benchmark::kMillisecond)->ComputeStatistics("min", minimum);
+
+// The skinning decomposition of the 10 horse poses (automatic bone count).
+void BM_SkinningDecompositionHorse(benchmark::State& state) {
+  const std::vector<std::filesystem::path> files = horse_files(10);
+  if (!std::filesystem::exists(files.back())) {
+    state.SkipWithError("shared pose data not found: horse-poses");
+    return;
+  }
+  const PoseSet examples = read_pose_set(files);
+  SkinningDecomposition result;
+  for (auto _ : state) {
+    result = decompose_skinning(examples);
+    benchmark::DoNotOptimize(result.weights.data());
+  }
+  state.counters["bones"] = result.bone_count();
+  state.counters["rms_error_percent"] = 100 * result.rms_error;
+}
+BENCHMARK(BM_SkinningDecompositionHorse)->Unit(benchmark::kMillisecond)->ComputeStatistics("min", minimum);
 
 void BM_DeformArm(benchmark::State& state) { deform(state, arm()); }
 BENCHMARK(BM_DeformArm)->Unit(benchmark::kMillisecond)->ComputeStatistics("min", minimum);

@@ -9,9 +9,15 @@
 //     a feature, measured along edges) and 8 known feature points; the completed mesh's distortion and the fraction of scan points whose
 //     correspondence lies within 5 % of the square root of the area of their true position.
 //
+// Constraint vertices are spread over the set's first pose (farthest points; over the held-out pose
+// with --spread-on-pose); every table is made for
+// each dictionary asked for (`--dictionary lbo|skeleton|auto|both`), side by side, and a last table
+// lists each pose's 95th-percentile vertex error over the bounding-box diagonal with 20 points.
+//
 // posekit_blend_evaluation [--data DIR] [--sets a,b,...] [--poses N] [--skip-registration]
 //                          [--feature-rings N] [--choice-after-solve] [--average-iterations N]
-//                          [--minimal-iterations N] [--smoothness-weight S] [--verbose]
+//                          [--minimal-iterations N] [--smoothness-weight S] [--dictionary D]
+//                          [--bones N] [--skeleton-iterations A,M] [--spread-on-pose] [--verbose]
 #include <posekit/blended_deformation.hpp>
 #include <posekit/geometry.hpp>
 #include <posekit/mesh_io.hpp>
@@ -48,6 +54,8 @@ struct Settings {
   int feature_rings = ScanFitOptions{}.feature_rings;
   bool verbose = false;
   BlendOptions blend;
+  std::vector<DictionaryChoice> dictionaries = {DictionaryChoice::lbo};
+  bool spread_on_pose = false;  // spread the constraint vertices over the held-out pose, not the set's first
 };
 
 std::vector<int> spread_vertices(const Eigen::MatrixX3d& vertices, int count, std::vector<int> chosen = {}) {
@@ -57,6 +65,7 @@ std::vector<int> spread_vertices(const Eigen::MatrixX3d& vertices, int count, st
 struct Distortion {
   double max = 0.0;
   double mean = 0.0;
+  double p95_of_diagonal = 0.0;  // 95th percentile of the vertex error over the bounding-box diagonal
 };
 
 // The baseline: the example that, rigidly placed on the constrained vertices (Kabsch), meets them
@@ -65,8 +74,12 @@ Distortion nearest_example(const PoseSet& examples, const std::vector<int>& vert
                            const Eigen::MatrixX3i& faces);
 
 Distortion distortion(const Eigen::MatrixX3d& result, const Eigen::MatrixX3d& truth, const Eigen::MatrixX3i& faces) {
-  const Eigen::VectorXd error = (result - truth).rowwise().norm() / std::sqrt(face_areas(truth, faces).sum());
-  return {error.maxCoeff(), error.mean()};
+  const Eigen::VectorXd distance = (result - truth).rowwise().norm();
+  const Eigen::VectorXd error = distance / std::sqrt(face_areas(truth, faces).sum());
+  std::vector<double> sorted(distance.data(), distance.data() + distance.size());
+  const size_t rank = static_cast<size_t>(0.95 * static_cast<double>(sorted.size() - 1) + 0.5);
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(rank), sorted.end());
+  return {error.maxCoeff(), error.mean(), sorted[rank] / bounding_box_diagonal(truth)};
 }
 
 Distortion nearest_example(const PoseSet& examples, const std::vector<int>& vertices, const Eigen::MatrixX3d& truth,
@@ -98,10 +111,11 @@ Distortion nearest_example(const PoseSet& examples, const std::vector<int>& vert
 
 // Summary of one table cell over the poses.
 struct Cell {
-  std::vector<double> max, mean, seconds, extra;
+  std::vector<double> max, mean, p95, seconds, extra;
   void add(const Distortion& d, double s, double e = 0.0) {
     max.push_back(d.max);
     mean.push_back(d.mean);
+    p95.push_back(d.p95_of_diagonal);
     seconds.push_back(s);
     extra.push_back(e);
   }
@@ -213,6 +227,10 @@ Mesh kept_part(const Eigen::MatrixX3d& pose, const Eigen::MatrixX3i& faces, cons
 
 struct SetResults {
   std::string name;
+  std::string dictionary;
+  std::vector<std::string> pose_names;
+  int bones = 0;
+  double skinning_error = 0.0;
   int poses = 0;
   int vertices = 0;
   Cell cases[3];
@@ -229,28 +247,34 @@ struct SetResults {
   int clusters = 0;
 };
 
-SetResults evaluate(const Settings& settings, const std::string& name) {
+SetResults evaluate(const Settings& settings, const std::string& name, DictionaryChoice dictionary) {
   SetResults out;
   out.name = name;
+  out.dictionary = dictionary_choice_name(dictionary);
   const PoseSet all = read_set(settings.data / name);
   const Eigen::MatrixX3i& faces = all.faces();
   out.vertices = all.vertex_count();
-  const std::vector<int> c20 = spread_vertices(all.pose(0), 20);
-  const std::vector<int> c10(c20.begin(), c20.begin() + 10);
   std::vector<int> every(static_cast<size_t>(all.vertex_count()));
   for (size_t v = 0; v < every.size(); ++v) every[v] = static_cast<int>(v);
-  const std::vector<int>* sets[3] = {&every, &c20, &c10};
   const int poses = std::min(all.pose_count(), settings.poses);
+  BlendOptions blend = settings.blend;
+  blend.dictionary = dictionary;
   for (int h = 0; h < poses; ++h) {
     PoseSet examples(faces);
     for (int k = 0; k < all.pose_count(); ++k) {
       if (k != h) examples.add_pose(all.pose(k), all.pose_name(k));
     }
-    BlendedDeformer deformer(examples, settings.blend);
+    BlendedDeformer deformer(examples, blend);
     out.setup_seconds += deformer.setup_report().seconds.total;
     out.atoms = deformer.setup_report().atoms;
     out.clusters = deformer.setup_report().clusters;
+    out.bones = deformer.setup_report().bones;
+    out.skinning_error = std::max(out.skinning_error, deformer.setup_report().skinning_error);
+    out.pose_names.push_back(all.pose_name(h));
     const Eigen::MatrixX3d& truth = all.pose(h);
+    const std::vector<int> c20 = spread_vertices(settings.spread_on_pose ? truth : all.pose(0), 20);
+    const std::vector<int> c10(c20.begin(), c20.begin() + 10);
+    const std::vector<int>* sets[3] = {&every, &c20, &c10};
     for (int c = 0; c < 3; ++c) {
       std::vector<LinearConstraint> constraints;
       Eigen::MatrixX3d targets(static_cast<Eigen::Index>(sets[c]->size()), 3);
@@ -264,8 +288,9 @@ SetResults evaluate(const Settings& settings, const std::string& name) {
       out.cases[c].add(d, result.seconds);
       if (c > 0) out.baseline[c].add(nearest_example(examples, *sets[c], truth, faces), 0.0);
       if (settings.verbose) {
-        std::printf("  %s case %c: max %.2f %% mean %.3f %% scale %.3f %.2f ms\n", all.pose_name(h).c_str(), "abc"[c],
-                    100 * d.max, 100 * d.mean, result.scale, 1e3 * result.seconds);
+        std::printf("  %s %s case %c: max %.2f %% mean %.3f %% p95 %.2f %% of the diagonal, scale %.3f %.2f ms\n",
+                    out.dictionary.c_str(), all.pose_name(h).c_str(), "abc"[c], 100 * d.max, 100 * d.mean,
+                    100 * d.p95_of_diagonal, result.scale, 1e3 * result.seconds);
       }
       if (c == 1) {
         const Eigen::RowVector3d center = truth.colwise().mean();
@@ -369,9 +394,32 @@ int main(int argc, char** argv) {
       settings.blend.average_iterations = std::atoi(value().c_str());
     } else if (arg == "--minimal-iterations") {
       settings.blend.minimal_iterations = std::atoi(value().c_str());
+    } else if (arg == "--spread-on-pose") {
+      settings.spread_on_pose = true;
+    } else if (arg == "--bones") {
+      settings.blend.skinning.bones = std::atoi(value().c_str());
+    } else if (arg == "--skeleton-iterations") {
+      const std::string counts = value();
+      settings.blend.skeleton_average_iterations = std::atoi(counts.c_str());
+      settings.blend.skeleton_minimal_iterations = std::atoi(counts.substr(counts.find(',') + 1).c_str());
+    } else if (arg == "--dictionary") {
+      const std::string choice = value();
+      if (choice == "lbo") {
+        settings.dictionaries = {DictionaryChoice::lbo};
+      } else if (choice == "skeleton") {
+        settings.dictionaries = {DictionaryChoice::skeleton};
+      } else if (choice == "auto") {
+        settings.dictionaries = {DictionaryChoice::automatic};
+      } else if (choice == "both") {
+        settings.dictionaries = {DictionaryChoice::lbo, DictionaryChoice::skeleton};
+      } else {
+        std::cerr << "--dictionary must be lbo, skeleton, auto or both\n";
+        return 2;
+      }
     } else {
       std::cerr << "usage: posekit_blend_evaluation [--data DIR] [--sets a,b,...] [--poses N] [--skip-registration] "
-                   "[--feature-rings N] [--choice-after-solve] [--average-iterations N] [--minimal-iterations N] [--smoothness-weight S] [--verbose]\n";
+                   "[--feature-rings N] [--choice-after-solve] [--average-iterations N] [--minimal-iterations N] [--smoothness-weight S] "
+                   "[--dictionary lbo|skeleton|auto|both] [--bones N] [--skeleton-iterations AVERAGE,MINIMAL] [--spread-on-pose] [--verbose]\n";
       return 2;
     }
   }
@@ -381,21 +429,24 @@ int main(int argc, char** argv) {
       std::printf("%s: not found under %s, skipped\n", name.c_str(), settings.data.string().c_str());
       continue;
     }
-    if (settings.verbose) std::printf("%s\n", name.c_str());
-    results.push_back(evaluate(settings, name));
+    for (DictionaryChoice dictionary : settings.dictionaries) {
+      if (settings.verbose) std::printf("%s, %s dictionary\n", name.c_str(), dictionary_choice_name(dictionary));
+      results.push_back(evaluate(settings, name, dictionary));
+    }
   }
   std::printf("\nLeave-one-out (distortion = vertex error / sqrt(area); max: mean over poses of the largest, worst: "
               "largest over poses)\n");
-  std::printf("| set | vertices | poses | atoms | clusters | case | max %% | worst max %% | mean %% | ms per deformation (median) "
-              "| nearest example rigidly placed: max %% / mean %% |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("| set | dictionary | vertices | poses | atoms | clusters | case | max %% | worst max %% | mean %% | p95 %% of "
+              "the diagonal: mean / worst | ms per deformation (median) | nearest example rigidly placed: max %% / mean %% |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   const char* labels[3] = {"(a) all vertices", "(b) 20 vertices", "(c) 10 vertices"};
   for (const SetResults& r : results) {
     for (int c = 0; c < 3; ++c) {
       const Cell& cell = r.cases[c];
-      std::printf("| %s | %d | %d | %d | %d | %s | %.2f | %.2f | %.3f | %.2f | ", r.name.c_str(), r.vertices, r.poses,
-                  r.atoms, r.clusters, labels[c], 100 * Cell::average(cell.max), 100 * Cell::largest(cell.max),
-                  100 * Cell::average(cell.mean), 1e3 * Cell::median(cell.seconds));
+      std::printf("| %s | %s | %d | %d | %d | %d | %s | %.2f | %.2f | %.3f | %.2f / %.2f | %.2f | ", r.name.c_str(),
+                  r.dictionary.c_str(), r.vertices, r.poses, r.atoms, r.clusters, labels[c], 100 * Cell::average(cell.max),
+                  100 * Cell::largest(cell.max), 100 * Cell::average(cell.mean), 100 * Cell::average(cell.p95),
+                  100 * Cell::largest(cell.p95), 1e3 * Cell::median(cell.seconds));
       if (c == 0) {
         std::printf("- |\n");
       } else {
@@ -405,16 +456,16 @@ int main(int argc, char** argv) {
   }
   std::printf("\nScale: 20 constraints scaled by 1.5, from the held-out pose (its scale against the examples is "
               "not exactly 1 at its own size, hence the ratio) and from an example (scale exactly 1.5); mean, min, max\n");
-  std::printf("| set | held-out x1.5: scale | max %% / mean %% | scale x1.5 / scale x1 | size of the result / size "
+  std::printf("| set | dictionary | held-out x1.5: scale | max %% / mean %% | scale x1.5 / scale x1 | size of the result / size "
               "of the pose | example x1.5: scale | max %% / mean %% | size of the result / size of the pose "
-              "|\n|---|---|---|---|---|---|---|---|\n");
+              "|\n|---|---|---|---|---|---|---|---|---|\n");
   const auto triple = [](const std::vector<double>& v) {
     char text[64];
     std::snprintf(text, sizeof text, "%.4f, %.4f, %.4f", Cell::average(v), Cell::smallest(v), Cell::largest(v));
     return std::string(text);
   };
   for (const SetResults& r : results) {
-    std::printf("| %s | %s | %.2f / %.3f | %s | %s | %s | %.2f / %.3f | %s |\n", r.name.c_str(),
+    std::printf("| %s | %s | %s | %.2f / %.3f | %s | %s | %s | %.2f / %.3f | %s |\n", r.name.c_str(), r.dictionary.c_str(),
                 triple(r.scaled.extra).c_str(), 100 * Cell::average(r.scaled.max), 100 * Cell::average(r.scaled.mean),
                 triple(r.scale_ratio.extra).c_str(), triple(r.scaled_size.extra).c_str(),
                 triple(r.scaled_example.extra).c_str(), 100 * Cell::average(r.scaled_example.max),
@@ -423,18 +474,36 @@ int main(int argc, char** argv) {
   if (settings.registration) {
     std::printf("\nPartial registration: 8 feature points, surface removed as listed; correspondences within 5 %% of "
                 "sqrt(area)\n");
-    std::printf("| set | removed %% | features only: max %% / mean %% | completed: max %% / mean %% | correct "
-                "correspondences %% (mean, min) | s per registration |\n|---|---|---|---|---|---|\n");
+    std::printf("| set | dictionary | removed %% | features only: max %% / mean %% | completed: max %% / mean %% | correct "
+                "correspondences %% (mean, min) | s per registration |\n|---|---|---|---|---|---|---|\n");
     for (const SetResults& r : results) {
-      std::printf("| %s | %.1f | %.2f / %.3f | %.2f / %.3f | %.1f, %.1f | %.2f |\n", r.name.c_str(),
+      std::printf("| %s | %s | %.1f | %.2f / %.3f | %.2f / %.3f | %.1f, %.1f | %.2f |\n", r.name.c_str(), r.dictionary.c_str(),
                   100 * Cell::average(r.removed_fraction), 100 * Cell::average(r.initial.max),
                   100 * Cell::average(r.initial.mean), 100 * Cell::average(r.completed.max),
                   100 * Cell::average(r.completed.mean), 100 * Cell::average(r.correct_fraction),
                   100 * Cell::smallest(r.correct_fraction), Cell::average(r.completed.seconds));
     }
   }
+  std::printf("\nEach pose from 20 spread points: 95th-percentile vertex error, %% of the bounding-box diagonal\n| set | pose |");
   for (const SetResults& r : results) {
-    std::printf("%s: precomputation %.2f s per fold on average\n", r.name.c_str(), r.setup_seconds / std::max(1, r.poses));
+    if (r.name == results.front().name) std::printf(" %s |", r.dictionary.c_str());
+  }
+  std::printf("\n");
+  for (size_t first = 0; first < results.size();) {
+    size_t last = first;
+    while (last < results.size() && results[last].name == results[first].name) ++last;
+    for (size_t pose = 0; pose < results[first].pose_names.size(); ++pose) {
+      std::printf("| %s | %s |", results[first].name.c_str(), results[first].pose_names[pose].c_str());
+      for (size_t r = first; r < last; ++r) std::printf(" %.2f |", 100 * results[r].cases[1].p95[pose]);
+      std::printf("\n");
+    }
+    first = last;
+  }
+  for (const SetResults& r : results) {
+    std::printf("%s, %s: precomputation %.2f s per fold on average", r.name.c_str(), r.dictionary.c_str(),
+                r.setup_seconds / std::max(1, r.poses));
+    if (r.bones > 0) std::printf(", %d bones, skinning RMS error up to %.2f %% of the diagonal", r.bones, 100 * r.skinning_error);
+    std::printf("\n");
   }
   return 0;
 }

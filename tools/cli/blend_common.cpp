@@ -7,6 +7,8 @@
 #include <posekit/mesh_io.hpp>
 
 #include <algorithm>
+#include <filesystem>
+#include <system_error>
 
 namespace posekit::cli {
 
@@ -22,6 +24,17 @@ void add_blend_tuning_options(CLI::App* command, BlendCommandOptions& options) {
   BlendOptions& b = options.blend;
   command->add_option("--weights", options.weights,
                       "Skinning weights (one row of numbers per vertex) instead of Laplace-Beltrami eigenfunctions");
+  command->add_option("--dictionary", options.dictionary,
+                      "lbo: Laplace-Beltrami weights; skeleton: change to weights learned from the examples (skinning "
+                      "decomposition); auto: skeleton when the examples move as rigid parts")
+      ->check(CLI::IsMember({"lbo", "skeleton", "auto"}))
+      ->capture_default_str();
+  command->add_option("--bones", b.skinning.bones, "Bones of the skinning decomposition (0 chooses the count)")
+      ->check(CLI::Range(0, 1000000))
+      ->capture_default_str();
+  command->add_option("--skinning-cache", options.skinning_cache,
+                      "File of the skinning decomposition: read when it exists (it must match the examples), else "
+                      "made and written");
   command->add_option("--eigenfunctions", b.eigenfunctions, "Laplace-Beltrami eigenfunctions used as weights")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
@@ -68,6 +81,45 @@ PoseSet read_examples(const BlendCommandOptions& options) {
 BlendedDeformer make_deformer(const PoseSet& examples, const BlendCommandOptions& options) {
   BlendOptions blend = options.blend;
   blend.estimate_scale = !options.no_scale;
+  blend.dictionary = options.dictionary == "skeleton" ? DictionaryChoice::skeleton
+                     : options.dictionary == "auto"   ? DictionaryChoice::automatic
+                                                      : DictionaryChoice::lbo;
+  if (!options.weights.empty() && blend.dictionary != DictionaryChoice::lbo) {
+    throw ArgumentError("--weights is a dictionary of its own; it cannot be combined with --dictionary " + options.dictionary);
+  }
+  if (!options.skinning_cache.empty() && blend.dictionary == DictionaryChoice::lbo) {
+    throw ArgumentError("--skinning-cache needs --dictionary skeleton or auto");
+  }
+  if (blend.dictionary != DictionaryChoice::lbo && examples.pose_count() < 2) {
+    throw ArgumentError("--dictionary " + options.dictionary +
+                        " learns bones from the examples and needs at least two of them, got " +
+                        std::to_string(examples.pose_count()));
+  }
+  if (blend.skinning.bones > examples.vertex_count()) {
+    throw ArgumentError("--bones " + std::to_string(blend.skinning.bones) + " exceeds the " +
+                        std::to_string(examples.vertex_count()) + " vertices of the examples");
+  }
+  if (!options.skinning_cache.empty()) {
+    const std::filesystem::path cache = options.skinning_cache;
+    if (std::filesystem::exists(cache)) {
+      const SkinningDecomposition skinning = read_skinning_decomposition(cache, examples);
+      if (blend.skinning.bones > 0 && skinning.bone_count() != blend.skinning.bones) {
+        throw InputError(options.skinning_cache, 0,
+                         "the cache holds " + std::to_string(skinning.bone_count()) + " bones, not the " +
+                             std::to_string(blend.skinning.bones) + " of --bones; remove it to make it anew");
+      }
+      return BlendedDeformer(examples, skinning, blend);
+    }
+    const std::filesystem::path folder = cache.has_parent_path() ? cache.parent_path() : std::filesystem::path(".");
+    std::error_code error;
+    if (!std::filesystem::is_directory(folder, error)) {
+      throw InputError(options.skinning_cache, 0, "cannot write the skinning cache: the folder " + folder.string() +
+                                                      " does not exist");
+    }
+    const SkinningDecomposition skinning = decompose_skinning(examples, blend.skinning);
+    write_skinning_decomposition(cache, skinning, examples);
+    return BlendedDeformer(examples, skinning, blend);
+  }
   if (options.weights.empty()) {
     if (blend.eigenfunctions >= examples.vertex_count()) {
       throw ArgumentError("--eigenfunctions " + std::to_string(blend.eigenfunctions) + " must be below the " +
@@ -105,11 +157,17 @@ nlohmann::json setup_json(const BlendSetupReport& setup) {
           {"weights", setup.weights},
           {"atoms", {{"full", setup.full_atoms}, {"kept", setup.atoms}}},
           {"clusters", setup.clusters},
+          {"dictionary", setup.dictionary},
+          {"bones", setup.bones},
+          {"skinning_error", setup.skinning_error},
+          {"trial", {{"examples", setup.trial.examples}, {"lbo", setup.trial.lbo}, {"skeleton", setup.trial.skeleton}}},
           {"seconds",
            {{"weights", setup.seconds.weights},
             {"dictionary", setup.seconds.dictionary},
             {"clusters", setup.seconds.clusters},
             {"system", setup.seconds.system},
+            {"skinning", setup.seconds.skinning},
+            {"trial", setup.seconds.trial},
             {"total", setup.seconds.total}}}};
 }
 

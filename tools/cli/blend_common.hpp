@@ -20,6 +20,8 @@ namespace posekit::cli {
 struct BlendCommandOptions {
   std::vector<std::string> examples;
   std::string weights;  ///< skinning weight file; empty: Laplace-Beltrami eigenfunctions
+  std::string dictionary = "lbo";  ///< lbo, skeleton or auto
+  std::string skinning_cache;      ///< file of the skinning decomposition, read when it exists, else written
   bool no_scale = false;
   BlendOptions blend;
 };
@@ -34,7 +36,8 @@ void add_blend_tuning_options(CLI::App* command, BlendCommandOptions& options);
 /// degenerate reference is an InputError naming its file).
 PoseSet read_examples(const BlendCommandOptions& options);
 
-/// The deformer for `examples` with the options' weights (file or eigenfunctions).
+/// The deformer for `examples` with the options' weights (file or eigenfunctions) and dictionary; with
+/// a skinning cache, its decomposition is read (checked against the examples) or made and written.
 BlendedDeformer make_deformer(const PoseSet& examples, const BlendCommandOptions& options);
 
 /// Deforms `deformer` to the point constraints; when some share a group, every permissible assignment

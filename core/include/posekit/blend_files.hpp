@@ -1,10 +1,13 @@
-// Text files of example-based deformation: point constraints (or scan feature points) and
-// skinning weights.
+// Text files of example-based deformation: point constraints (or scan feature points), skinning
+// weights, and the cache of a skinning decomposition.
 //
 // Both are plain text, one record per line. '#' starts a comment that runs to the end of the line;
 // blank lines (and lines holding only a comment) are skipped; fields are separated by spaces or tabs;
 // Windows line ends are accepted. Vertex indices are zero-based, in the order of the mesh files.
 #pragma once
+
+#include <posekit/mesh.hpp>
+#include <posekit/skinning_decomposition.hpp>
 
 #include <Eigen/Core>
 
@@ -34,5 +37,16 @@ PointConstraints read_point_constraints(const std::filesystem::path& file, int v
 /// with the same number m >= 1 of finite numbers, not all zero. Throws InputError naming the file and
 /// line for a malformed row and naming the file when the row count differs from vertex_count.
 Eigen::MatrixXd read_skinning_weights(const std::filesystem::path& file, int vertex_count);
+
+/// Writes `decomposition` of `examples` to `file` whole or not at all (a temporary file, then a
+/// rename), with the fingerprints of the connectivity and of the example poses that
+/// read_skinning_decomposition() checks. Throws InputError naming the file when it cannot be written.
+void write_skinning_decomposition(const std::filesystem::path& file, const SkinningDecomposition& decomposition,
+                                  const PoseSet& examples);
+
+/// Reads a decomposition written by write_skinning_decomposition() for these `examples`. Throws
+/// InputError naming the file when it is unreadable or malformed (with the line), when it was made
+/// for another mesh (vertex or face count, connectivity) or from other example poses.
+SkinningDecomposition read_skinning_decomposition(const std::filesystem::path& file, const PoseSet& examples);
 
 }  // namespace posekit

@@ -14,6 +14,7 @@
 
 #include <posekit/blend_dictionary.hpp>
 #include <posekit/mesh.hpp>
+#include <posekit/skinning_decomposition.hpp>
 
 #include <Eigen/Core>
 
@@ -23,8 +24,35 @@
 
 namespace posekit {
 
+/// The dictionary a deformation ends in: the Laplace-Beltrami one; the skeleton one, whose weights a
+/// skinning decomposition learns from the examples (the deformation starts in the Laplace-Beltrami
+/// dictionary and changes to the skeleton one, as the paper does for articulated shapes); or, by
+/// measurement, the one that rebuilds examples held out of the others better (see
+/// BlendOptions::trial_examples).
+enum class DictionaryChoice { lbo, skeleton, automatic };
+
+/// "lbo", "skeleton" or "auto".
+const char* dictionary_choice_name(DictionaryChoice choice);
+
 /// Settings of BlendedDeformer; lengths and weights refer to the unit-area frame of the reference.
 struct BlendOptions {
+  /// Which dictionary (see DictionaryChoice); ignored with skinning weights given to the constructor.
+  DictionaryChoice dictionary = DictionaryChoice::lbo;
+  /// The skinning decomposition behind the skeleton dictionary.
+  SkinningOptions skinning;
+  /// automatic: up to this many examples (those farthest from the reference; never the reference) are
+  /// each rebuilt from `trial_points` spread vertices by both dictionaries made from the other
+  /// examples; the skeleton dictionary is chosen when its mean 95th-percentile vertex error is lower.
+  /// Needs at least three examples (with fewer, the Laplace-Beltrami dictionary). >= 1 each.
+  int trial_examples = 2;
+  int trial_points = 20;
+  /// Iterations in the skeleton dictionary after the change (average, then minimal ARAP; >= 0); the
+  /// counts below apply to the Laplace-Beltrami dictionary before it.
+  int skeleton_average_iterations = 0;
+  int skeleton_minimal_iterations = 4;
+  /// The skeleton dictionary holds the Laplace-Beltrami eigenfunctions beside the bone weights (true),
+  /// or the bone weights alone, as in the paper (false).
+  bool skeleton_keeps_eigenfunctions = true;
   /// m: Laplace-Beltrami eigenfunctions used as weights (>= 1; ignored when skinning weights are
   /// given).
   int eigenfunctions = 20;
@@ -79,8 +107,21 @@ struct BlendSetupReport {
   int atoms = 0;       ///< after reduction
   int clusters = 0;
   double reference_area = 0.0;  ///< surface area of the reference, in the examples' units
+  /// The dictionary deformations end in ("lbo", "skeleton" or "weights" for given skinning weights);
+  /// weights, atoms and clusters above are that dictionary's.
+  std::string dictionary = "lbo";
+  /// With a skinning decomposition (skeleton or automatic): its bones and RMS error over the examples
+  /// (fraction of the diagonal); 0 otherwise.
+  int bones = 0;
+  double skinning_error = 0.0;
+  /// automatic: the examples held out and each dictionary's mean 95th-percentile vertex error on them
+  /// (fraction of the diagonal); 0 when no trial ran.
   struct {
-    double weights = 0, dictionary = 0, clusters = 0, system = 0, total = 0;
+    int examples = 0;
+    double lbo = 0.0, skeleton = 0.0;
+  } trial;
+  struct {
+    double weights = 0, dictionary = 0, clusters = 0, system = 0, skinning = 0, trial = 0, total = 0;
   } seconds;
 };
 
@@ -119,8 +160,13 @@ class BlendedDeformer {
   /// the internal frame). Laplace-Beltrami eigenfunctions of the reference are the weights. Throws
   /// ArgumentError for an empty set, a degenerate reference or options out of range.
   explicit BlendedDeformer(const PoseSet& examples, const BlendOptions& options = {});
-  /// The same with #V by m skinning weights instead of eigenfunctions (rows need not sum to 1).
+  /// The same with #V by m skinning weights instead of eigenfunctions (rows need not sum to 1): the
+  /// only dictionary (options.dictionary must be lbo).
   BlendedDeformer(const PoseSet& examples, const Eigen::MatrixXd& skinning_weights, const BlendOptions& options = {});
+  /// The same as the first, with a skinning decomposition of these examples computed before (a cache)
+  /// instead of a new one when options.dictionary is skeleton or automatic. Throws ArgumentError when
+  /// it does not belong to these examples (vertex or example count).
+  BlendedDeformer(const PoseSet& examples, const SkinningDecomposition& skinning, const BlendOptions& options);
   ~BlendedDeformer();
   BlendedDeformer(BlendedDeformer&&) noexcept;
   BlendedDeformer& operator=(BlendedDeformer&&) noexcept;
@@ -132,8 +178,10 @@ class BlendedDeformer {
   int vertex_count() const;
   int example_count() const;
   int cluster_count() const;
-  /// Per-vertex rotation cluster labels.
+  /// Per-vertex rotation cluster labels (of the dictionary deformations end in).
   const std::vector<int>& clusters() const;
+  /// The skinning decomposition behind the skeleton dictionary (null without one).
+  const SkinningDecomposition* skinning() const;
 
   /// Replaces the constraints and factorizes the two matrices (initial and global) anew. Throws
   /// ArgumentError for an empty list, a vertex out of range, mismatched sizes, or a non-finite or
@@ -149,11 +197,13 @@ class BlendedDeformer {
   const std::vector<LinearConstraint>& constraints() const;
 
   /// Deforms from the constraint targets (#constraints by 3, one row per constraint, in any frame and
-  /// scale): the initial solve without rotations, then average-ARAP and minimal-ARAP iterations.
+  /// scale): the initial solve without rotations, then average-ARAP and minimal-ARAP iterations; with
+  /// the skeleton dictionary, then the change to it and its own iterations (stages "skeleton ...").
   /// Throws ArgumentError when the sizes disagree, a target is not finite, or there are no constraints.
   BlendResult deform(const Eigen::Ref<const Eigen::MatrixX3d>& targets) const;
-  /// The same, continuing from the transformations of `start` instead of the initial solve: for
-  /// non-rigid ICP, where the constraints change a little between calls. `average_iterations` and
+  /// The same, continuing from the transformations of `start` (a result of this deformer) instead of
+  /// the initial solve, in the dictionary `start` ended in: for non-rigid ICP, where the constraints
+  /// change a little between calls. `average_iterations` and
   /// `minimal_iterations` replace the options' counts when they are >= 0.
   BlendResult deform(const Eigen::Ref<const Eigen::MatrixX3d>& targets, const BlendResult& start,
                      int average_iterations = -1,
@@ -171,7 +221,19 @@ class BlendedDeformer {
 
  private:
   struct State;
-  void build(const PoseSet& examples, const Eigen::MatrixXd* skinning_weights, const BlendOptions& options);
+  BlendedDeformer();
+  /// `clusters` (optional, per vertex): rotation cluster labels that replace the options' choice.
+  void build(const PoseSet& examples, const Eigen::MatrixXd* skinning_weights, const SkinningDecomposition* skinning,
+             const std::vector<int>* clusters, const BlendOptions& options);
+  /// deform() and its continuation in this deformer's own (first) dictionary; without `vertices` the
+  /// result's vertices are left empty (the dictionary change needs only the transformations).
+  BlendResult deform_in_own_dictionary(const Eigen::Ref<const Eigen::MatrixX3d>& targets, bool vertices = true) const;
+  BlendResult continue_in_own_dictionary(const Eigen::Ref<const Eigen::MatrixX3d>& targets, const BlendResult& start,
+                                         int average_iterations, int minimal_iterations, bool vertices = true) const;
+  Eigen::MatrixX3d own_vertices(const Eigen::Ref<const Eigen::MatrixX3d>& transformations) const;
+  /// DictionaryChoice::automatic: whether the skeleton dictionary rebuilds held-out examples better;
+  /// fills report.trial.
+  static bool skeleton_rebuilds_better(const PoseSet& examples, const BlendOptions& options, BlendSetupReport& report);
   std::unique_ptr<State> state_;
 };
 
