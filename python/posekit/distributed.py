@@ -4,8 +4,8 @@
     results = posekit.distributed.correct_sequence(V_ref, frames, F, client=Client("tcp://scheduler:8786"))
 
 ``client`` is a ``dask.distributed.Client``, a scheduler address, or None for a ``LocalCluster`` of
-worker processes on this machine (closed again at the end). The reference and the faces are sent to
-the workers once. Results come back in order and are the same, bit for bit, as on one machine: a
+worker processes on this machine (closed again at the end). Every task carries the reference, the
+faces and its frames, so that the scheduler can run it again on another worker. Results come back in order and are the same, bit for bit, as on one machine: a
 sequence is corrected in two passes that follow ``posekit.correct_sequence`` exactly. First the runs
 of consecutive frames that need a correction (a frame's correction may be carried to the next, so a
 run is never split), grouped into tasks of about ``chunk_frames`` frames; then the blend in time, in
@@ -29,8 +29,10 @@ def _connected(client):
     from dask.distributed import Client, LocalCluster
 
     with warnings.catch_warnings():
-        # Each task carries its own frames rather than futures of scattered ones: the scheduler can then
-        # run it again on another worker when its worker dies, while scattered data would die with it.
+        # Each task carries its inputs (the reference, the faces, its frames) rather than futures of
+        # scattered data: the scheduler can then run it again on another worker when its worker dies.
+        # Scattered data can die with a worker; broadcast copies are made in the background, and a
+        # worker killed before they were all made took the reference with it and cancelled the run.
         warnings.filterwarnings("ignore", message="Large object of size", category=UserWarning)
         with _client_of(client, Client, LocalCluster) as connected:
             yield connected
@@ -46,13 +48,6 @@ def _client_of(client, Client, LocalCluster):
             yield remote
     else:
         yield client
-
-
-def _broadcast(dask, V_ref, F):
-    """The reference and the faces on every worker, under keys of this call alone: with keys derived
-    from the content (Dask's default), a run right after another on the same reference reuses keys that
-    the scheduler may still be releasing, and the copies to the workers are then lost."""
-    return dask.scatter([V_ref, np.asarray(F)], broadcast=True, hash=False)
 
 
 def _new_faces(V_ref, frames, F):
@@ -123,7 +118,7 @@ def correct_sequence(V_ref, frames: Sequence[np.ndarray], F, client=None, chunk_
     count = len(frames)
     options = dict(options, carry=carry)
     with _connected(client) as dask:
-        reference, faces = _broadcast(dask, V_ref, F)
+        reference, faces = V_ref, np.asarray(F)
         spans = [(a, min(a + chunk_frames, count)) for a in range(0, count, chunk_frames)]
         needs = sum(dask.gather([dask.submit(_new_faces, reference, frames[a:b], faces, pure=False)
                                  for a, b in spans]), [])
@@ -171,7 +166,7 @@ def correct(V_ref, targets: Sequence[np.ndarray], F, client=None,
     target. The keywords are those of posekit.correct. Returns a (V, report) per target, in order."""
     V_ref, targets = _check_sequence(V_ref, targets, F)
     with _connected(client) as dask:
-        reference, faces = _broadcast(dask, V_ref, F)
+        reference, faces = V_ref, np.asarray(F)
         futures = [dask.submit(_correct_one, reference, V, faces, options, pure=False) for V in targets]
         if progress:
             from dask.distributed import as_completed
