@@ -273,8 +273,7 @@ struct Alternation {
   }
 
   void update_weights() {
-    std::vector<int> primary(static_cast<size_t>(problem.vertices));
-    for (int i = 0; i < problem.vertices; ++i) primary[static_cast<size_t>(i)] = weights.primary(i);
+    const std::vector<int> primary = primaries();
     const Weights previous = weights;
     const int k_count = problem.examples;
     const double smooth = (k_count - 1) * options.smoothness * options.smoothness * problem.edge_length * problem.edge_length;
@@ -399,21 +398,27 @@ struct Alternation {
     });
   }
 
-  // Per vertex, squared error summed over the examples.
-  Eigen::VectorXd errors() const {
+  // Per vertex, squared error summed over the examples; `largest` (if given) the largest distance.
+  Eigen::VectorXd errors(Eigen::VectorXd* largest = nullptr) const {
     Eigen::VectorXd e(problem.vertices);
+    Eigen::VectorXd worst(problem.vertices);
     tbb::parallel_for(0, problem.vertices, [&](int i) {
       const Eigen::Vector3d p = problem.rest.row(i).transpose();
       double sum = 0.0;
+      double most = 0.0;
       for (int k = 1; k < problem.examples; ++k) {
         Eigen::Vector3d x = Eigen::Vector3d::Zero();
         for (int s = 0; s < kMaxInfluences && weights.bone(i, s) >= 0; ++s) {
           x += weights.weight(i, s) * apply(motions[static_cast<size_t>(k * bones + weights.bone(i, s))], p);
         }
-        sum += (x - problem.poses[static_cast<size_t>(k)].row(i).transpose()).squaredNorm();
+        const double squared = (x - problem.poses[static_cast<size_t>(k)].row(i).transpose()).squaredNorm();
+        sum += squared;
+        most = std::max(most, squared);
       }
       e(i) = sum;
+      worst(i) = std::sqrt(most);
     });
+    if (largest != nullptr) *largest = worst;
     return e;
   }
 
@@ -517,21 +522,10 @@ SkinningDecomposition decompose_skinning(const PoseSet& examples, const Skinning
   }
   result.parents = skeleton.parents;
   result.joints = (skeleton.joints / problem.scale).rowwise() + problem.center;
-  const Eigen::VectorXd errors = alternation.errors();
+  Eigen::VectorXd largest;
+  const Eigen::VectorXd errors = alternation.errors(&largest);
   result.rms_error = rms(problem, errors);
-  double largest = 0.0;
-  for (int i = 0; i < problem.vertices; ++i) {
-    const Eigen::Vector3d p = problem.rest.row(i).transpose();
-    for (int k = 1; k < problem.examples; ++k) {
-      Eigen::Vector3d x = Eigen::Vector3d::Zero();
-      for (int s = 0; s < kMaxInfluences && alternation.weights.bone(i, s) >= 0; ++s) {
-        x += alternation.weights.weight(i, s) *
-             apply(alternation.motions[static_cast<size_t>(k * bones + alternation.weights.bone(i, s))], p);
-      }
-      largest = std::max(largest, (x - problem.poses[static_cast<size_t>(k)].row(i).transpose()).norm());
-    }
-  }
-  result.max_error = largest;
+  result.max_error = largest.maxCoeff();
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
