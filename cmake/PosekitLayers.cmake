@@ -63,6 +63,7 @@ set(POSEKIT_LAYER_demo_USES mesh)
 set(POSEKIT_LAYER_interpolate_FOLDERS core/interpolate)
 set(POSEKIT_LAYER_interpolate_HEADERS edge_space interpolate interpolation_error rigid_segmentation)
 set(POSEKIT_LAYER_interpolate_USES geometry)
+set(POSEKIT_LAYER_interpolate_CONFINES Eigen/CholmodSupport cholmod)
 
 set(POSEKIT_LAYER_correct_FOLDERS core/correct)
 set(POSEKIT_LAYER_correct_HEADERS correct correct_sequence rbf_fitting poisson_interpolation)

@@ -7,7 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libtbb-dev libnanoflann-dev libspectra-dev
-  libcli11-dev nlohmann-json3-dev
+  libcli11-dev nlohmann-json3-dev libsuitesparse-dev libopenblas-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   mesa-vulkan-drivers libvulkan-dev glslang-tools vulkan-validationlayers spirv-tools
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo

@@ -10,6 +10,8 @@
 #include <posekit/interpolate.hpp>
 #include <posekit/mesh.hpp>
 
+#include <chrono>
+
 namespace posekit::detail {
 namespace {
 
@@ -21,6 +23,7 @@ class HalfwayStage final : public RepairStage {
 
   std::optional<Candidate> run(const Candidate& current, CorrectionContext& context, StageReport& report) override {
     Eigen::MatrixX3d halfway;
+    const auto start = std::chrono::steady_clock::now();
     try {
       PoseSet ends(context.faces);
       ends.add_pose(context.reference);
@@ -33,13 +36,15 @@ class HalfwayStage final : public RepairStage {
     } catch (const Error&) {
       return std::nullopt;  // no halfway pose for this mesh (edge space needs a manifold surface)
     }
+    const double pose_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     CorrectionReport first_leg;
     const Eigen::MatrixX3d halfway_corrected = correct_in_scope(context.reference, halfway, context.faces, context.device,
                                                                 context.options, CorrectionScope::leg, &first_leg);
     const Eigen::MatrixX3d corrected =
         correct_in_scope(halfway_corrected, context.target, context.faces, context.device, context.options,
                          CorrectionScope::leg, nullptr, {}, &context.reference_intersecting);
-    report.details = {{"halfway_new_faces", first_leg.result.new_intersecting_faces}};
+    report.details = {{"halfway_new_faces", first_leg.result.new_intersecting_faces},
+                      {"halfway_pose_seconds", pose_seconds}};
     report.note = "corrected in two legs through the pose halfway in edge space (" +
                   std::to_string(first_leg.result.new_intersecting_faces) +
                   " new intersecting faces there after its correction)";

@@ -127,7 +127,7 @@ void EdgeSpaceReconstruction::prepare_gauss_newton() {
       for (int j = 0; j < 4; ++j) hinge_slots_.push_back(normal_matrix_.slot(corners[i], corners[j]));
     }
   }
-  normal_solver_.analyzePattern(normal_matrix_.matrix());
+  normal_solver_.analyze_pattern(normal_matrix_.matrix());
   gauss_newton_ready_ = true;
 }
 
@@ -235,8 +235,7 @@ ReconstructionStats EdgeSpaceReconstruction::refine(Eigen::MatrixX3d& x, const E
     }
     const double damping = kRegularization * std::max(normal_matrix_.mean_diagonal(), 1e-300);
     for (int v = 0; v < vertex_count; ++v) normal_matrix_.add_diagonal(v, damping);
-    normal_solver_.factorize(normal_matrix_.matrix());
-    if (normal_solver_.info() != Eigen::Success) break;
+    if (!normal_solver_.factorize(normal_matrix_.matrix())) break;
     const Eigen::VectorXd step = -normal_solver_.solve(gradient);
     if (!step.allFinite()) break;
     // Backtracking: the full Gauss-Newton step first, halved until the energy goes down.

@@ -10,6 +10,7 @@
 #include "interpolate/block_sparse_matrix.hpp"
 #include "interpolate/edge_space_patch.hpp"
 #include "interpolate/pose_deformations.hpp"
+#include "interpolate/sparse_cholesky.hpp"
 
 #include <Eigen/Core>
 #include <Eigen/SparseCholesky>
@@ -77,7 +78,7 @@ class EdgeSpaceReconstruction {
   BlockSparseMatrix3 normal_matrix_;                   // Gauss-Newton: one 3 x 3 block per vertex
   std::vector<BlockSparseMatrix3::Slot> edge_slots_;   // per edge: (a, b), (b, a)
   std::vector<BlockSparseMatrix3::Slot> hinge_slots_;  // per hinge: 16 blocks of (a, b, c, d) x (a, b, c, d)
-  Solver normal_solver_;
+  SparseCholesky normal_solver_;
 };
 
 }  // namespace posekit::interpolation

@@ -1,0 +1,45 @@
+// The factorization of the symmetric positive definite systems of the edge-space Gauss-Newton.
+// Large systems go to SuiteSparse's CHOLMOD, which factorizes supernodally (dense BLAS kernels on
+// blocks of columns) where the factor is dense enough, as on the normal matrix of a whole mesh of
+// tens of thousands of vertices: several times faster than a simplicial LDLT there. Small systems
+// keep Eigen's simplicial LDLT: CHOLMOD saves at most a fifth of the time on them, and the
+// corrections that go through an edge-space pose are sensitive to the last bits of its solution
+// (docs/interpolate.md, "Speed"). CHOLMOD's headers stay in the source file.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include <memory>
+
+namespace posekit::interpolation {
+
+class SparseCholesky {
+ public:
+  /// Systems of at least `cholmod_rows` rows are factorized by CHOLMOD, smaller ones by Eigen.
+  explicit SparseCholesky(Eigen::Index cholmod_rows = kCholmodRows);
+  ~SparseCholesky();
+  SparseCholesky(const SparseCholesky&) = delete;
+  SparseCholesky& operator=(const SparseCholesky&) = delete;
+
+  /// The symbolic analysis (fill-reducing ordering) of the lower triangle of `matrix`, once per pattern.
+  void analyze_pattern(const Eigen::SparseMatrix<double>& matrix);
+
+  /// The numeric factorization of `matrix`, whose pattern was analyzed; false unless it is positive definite.
+  bool factorize(const Eigen::SparseMatrix<double>& matrix);
+
+  /// The solution of matrix * x = rhs with the last factorization.
+  Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
+
+  /// Whether the analyzed pattern went to CHOLMOD.
+  bool uses_cholmod() const;
+
+  /// 60,000 rows: 20,000 vertices of three coordinates each.
+  static constexpr Eigen::Index kCholmodRows = 60000;
+
+ private:
+  struct Factorization;
+  std::unique_ptr<Factorization> factorization_;
+};
+
+}  // namespace posekit::interpolation

@@ -1,0 +1,77 @@
+// The Gauss-Newton factorization: both of its factorizations solve a positive definite system alike,
+// report a matrix that is not positive definite, and the size of the system picks between them.
+#include "interpolate/sparse_cholesky.hpp"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+namespace posekit::testing {
+namespace {
+
+// The Laplacian of a side x side grid plus `shift` times the identity.
+Eigen::SparseMatrix<double> shifted_grid_laplacian(int side, double shift) {
+  std::vector<Eigen::Triplet<double>> entries;
+  const auto index = [side](int i, int j) { return i * side + j; };
+  for (int i = 0; i < side; ++i) {
+    for (int j = 0; j < side; ++j) {
+      entries.emplace_back(index(i, j), index(i, j), shift);
+      const int neighbours[2][2] = {{i + 1, j}, {i, j + 1}};
+      for (const auto& n : neighbours) {
+        if (n[0] >= side || n[1] >= side) continue;
+        const int a = index(i, j);
+        const int b = index(n[0], n[1]);
+        entries.emplace_back(a, a, 1.0);
+        entries.emplace_back(b, b, 1.0);
+        entries.emplace_back(a, b, -1.0);
+        entries.emplace_back(b, a, -1.0);
+      }
+    }
+  }
+  Eigen::SparseMatrix<double> matrix(side * side, side * side);
+  matrix.setFromTriplets(entries.begin(), entries.end());
+  return matrix;
+}
+
+TEST(SparseCholesky, BothFactorizationsSolveThePositiveDefiniteSystem) {
+  const Eigen::SparseMatrix<double> matrix = shifted_grid_laplacian(40, 1e-3);
+  const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(matrix.rows(), -1.0, 2.0);
+  interpolation::SparseCholesky simplicial;
+  interpolation::SparseCholesky cholmod(0);
+  Eigen::VectorXd solutions[2];
+  int k = 0;
+  for (interpolation::SparseCholesky* solver : {&simplicial, &cholmod}) {
+    solver->analyze_pattern(matrix);
+    ASSERT_TRUE(solver->factorize(matrix));
+    solutions[k] = solver->solve(rhs);
+    EXPECT_LT((matrix * solutions[k] - rhs).norm(), 1e-9 * rhs.norm()) << "solver " << k;
+    ++k;
+  }
+  EXPECT_FALSE(simplicial.uses_cholmod());
+  EXPECT_TRUE(cholmod.uses_cholmod());
+  EXPECT_LT((solutions[0] - solutions[1]).norm(), 1e-8 * solutions[0].norm());
+}
+
+TEST(SparseCholesky, RefusesAMatrixThatIsNotPositiveDefinite) {
+  const Eigen::SparseMatrix<double> matrix = shifted_grid_laplacian(10, -1.0);
+  for (const Eigen::Index cholmod_rows : {Eigen::Index{0}, interpolation::SparseCholesky::kCholmodRows}) {
+    interpolation::SparseCholesky solver(cholmod_rows);
+    solver.analyze_pattern(matrix);
+    EXPECT_FALSE(solver.factorize(matrix)) << "CHOLMOD from " << cholmod_rows << " rows";
+  }
+}
+
+TEST(SparseCholesky, LargeSystemsGoToCholmod) {
+  const Eigen::Index rows = interpolation::SparseCholesky::kCholmodRows;
+  Eigen::SparseMatrix<double> identity(rows, rows);
+  identity.setIdentity();
+  interpolation::SparseCholesky solver;
+  solver.analyze_pattern(identity);
+  EXPECT_TRUE(solver.uses_cholmod());
+  ASSERT_TRUE(solver.factorize(identity));
+  const Eigen::VectorXd rhs = Eigen::VectorXd::Constant(rows, 3.0);
+  EXPECT_LT((solver.solve(rhs) - rhs).norm(), 1e-12);
+}
+
+}  // namespace
+}  // namespace posekit::testing
