@@ -10,7 +10,7 @@
 #include <posekit/interpolate.hpp>
 #include <posekit/mesh.hpp>
 
-#include <chrono>
+#include <utility>
 
 namespace posekit::detail {
 namespace {
@@ -23,20 +23,22 @@ class HalfwayStage final : public RepairStage {
 
   std::optional<Candidate> run(const Candidate& current, CorrectionContext& context, StageReport& report) override {
     Eigen::MatrixX3d halfway;
-    const auto start = std::chrono::steady_clock::now();
+    double pose_seconds = 0.0;  // the interpolator's own figures: its preparation and the one pose
     try {
       PoseSet ends(context.faces);
       ends.add_pose(context.reference);
       ends.add_pose(context.target);
       InterpolationOptions edge_space;
       edge_space.method = InterpolationMethod::edge;
-      halfway = interpolate_poses(ends, two_pose_weights(0.5), edge_space);
+      PoseInterpolator interpolator(std::move(ends), edge_space);
+      InterpolationStepReport step;
+      halfway = interpolator.interpolate(two_pose_weights(0.5), &step);
+      pose_seconds = interpolator.precomputation_seconds().total + step.seconds.total;
     } catch (const DeviceError&) {
       throw;
     } catch (const Error&) {
       return std::nullopt;  // no halfway pose for this mesh (edge space needs a manifold surface)
     }
-    const double pose_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     CorrectionReport first_leg;
     const Eigen::MatrixX3d halfway_corrected = correct_in_scope(context.reference, halfway, context.faces, context.device,
                                                                 context.options, CorrectionScope::leg, &first_leg);
