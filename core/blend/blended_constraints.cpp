@@ -21,7 +21,7 @@ void factorize(Eigen::LLT<Eigen::MatrixXd>& llt, const Eigen::MatrixXd& matrix, 
 }  // namespace
 
 Eigen::RowVectorXd BlendedDeformer::State::constraint_row(const LinearConstraint& constraint) const {
-  const int vertex_count = static_cast<int>(d.rows());
+  const int vertex_count = static_cast<int>(product.rows());
   if (constraint.vertices.empty()) throw ArgumentError("a linear constraint names no vertex");
   if (constraint.vertices.size() != constraint.coefficients.size()) {
     throw ArgumentError("a linear constraint has " + std::to_string(constraint.vertices.size()) + " vertices but " +
@@ -31,14 +31,14 @@ Eigen::RowVectorXd BlendedDeformer::State::constraint_row(const LinearConstraint
     throw ArgumentError("a linear constraint has weight " + std::to_string(constraint.weight) +
                         "; it must be finite and positive");
   }
-  Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(d.cols());
+  Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(product.cols());
   for (size_t i = 0; i < constraint.vertices.size(); ++i) {
     const int v = constraint.vertices[i];
     if (v < 0 || v >= vertex_count) {
       throw ArgumentError("constraint vertex " + std::to_string(v) + " is outside [0, " + std::to_string(vertex_count) + ")");
     }
     if (!std::isfinite(constraint.coefficients[i])) throw ArgumentError("a linear constraint has a non-finite coefficient");
-    row += constraint.coefficients[i] * d.row(v);
+    for (int p = 0; p < atom_count(); ++p) row(p) += constraint.coefficients[i] * dictionary.value(v, p);
   }
   return row;
 }

@@ -195,7 +195,8 @@ void BlendedDeformer::build(const PoseSet& examples, const Eigen::MatrixXd* skin
     }
   }
   s.dictionary = reduce_dictionary(full, kept, mass, keep);
-  s.d = s.dictionary.matrix();
+  const Eigen::MatrixXd d = s.dictionary.matrix();
+  s.product = detail::DictionaryProduct(s.dictionary);
   s.report.seconds.dictionary = seconds_since(stage);
 
   // Rotation clusters.
@@ -217,7 +218,7 @@ void BlendedDeformer::build(const PoseSet& examples, const Eigen::MatrixXd* skin
   const int n_atoms = s.atom_count();
   const int nc = s.cluster_count;
   const Eigen::SparseMatrix<double> arap = arap_laplacian(laplacian);
-  const Eigen::MatrixXd h = arap_matrix(arap, s.d);
+  const Eigen::MatrixXd h = arap_matrix(arap, d);
   s.projected.resize(n_atoms, 3 * nc * example_count);
   s.example_energy = Eigen::VectorXd::Zero(example_count);
   for (int k = 0; k < example_count; ++k) {
@@ -244,7 +245,7 @@ void BlendedDeformer::build(const PoseSet& examples, const Eigen::MatrixXd* skin
     Eigen::SparseMatrix<double> f(vertex_count, 3 * nc);
     f.setFromTriplets(entries.begin(), entries.end());
     const Eigen::SparseMatrix<double> ft = f.transpose();
-    s.projected.middleCols(3 * nc * k, 3 * nc) = (ft * s.d).transpose();
+    s.projected.middleCols(3 * nc * k, 3 * nc) = (ft * d).transpose();
   }
   const Eigen::MatrixXd lambda = s.dictionary.transformation_smoothness(weight_smooth);
   const double eps = options.ridge * std::max(h.diagonal().mean(), 1e-300);
@@ -358,24 +359,7 @@ Eigen::MatrixX3d BlendedDeformer::own_vertices(const Eigen::Ref<const Eigen::Mat
     throw ArgumentError("BlendedDeformer::vertices: " + std::to_string(transformations.rows()) +
                         " transformation rows for " + std::to_string(s.atom_count()) + " atoms");
   }
-  const int n = static_cast<int>(s.d.rows());
-  Eigen::MatrixX3d result(n, 3);
-  const int block = 1024;
-  // D T column by column: a general matrix product would repack all of D (the largest array) on every
-  // call; this reads it once, while the block of the result stays in cache.
-  tbb::parallel_for(0, (n + block - 1) / block, [&](int b) {
-    const int first = b * block;
-    const int height = std::min(block, n - first);
-    auto part = result.middleRows(first, height);
-    part.setZero();
-    for (Eigen::Index p = 0; p < s.d.cols(); ++p) {
-      const auto column = s.d.col(p).segment(first, height);
-      part.col(0) += transformations(p, 0) * column;
-      part.col(1) += transformations(p, 1) * column;
-      part.col(2) += transformations(p, 2) * column;
-    }
-  });
-  return (result / s.scale).rowwise() + s.center;
+  return (s.product(transformations) / s.scale).rowwise() + s.center;
 }
 
 }  // namespace posekit

@@ -28,7 +28,7 @@ Eigen::MatrixX3d BlendedDeformer::interpolate(const BlendResult& a, const BlendR
   // rotations) is blended linearly, so that t = 0 and t = 1 give a and b exactly.
   const auto free_shape = [&](const std::vector<Eigen::Matrix3d>& rotations, const Eigen::VectorXd& weights,
                               const Eigen::VectorXd& scales) -> Eigen::MatrixX3d {
-    return s.unconstrained.solve(s.arap_right_side(rotations, weights.cwiseProduct(scales)));
+    return State::solve(s.unconstrained, s.arap_right_side(rotations, weights.cwiseProduct(scales)));
   };
   std::vector<Eigen::Matrix3d> rotations(blocks);
   for (size_t j = 0; j < blocks; ++j) {

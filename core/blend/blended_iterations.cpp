@@ -29,6 +29,13 @@ double soft_threshold(double value, double threshold) {
 
 }  // namespace
 
+Eigen::MatrixX3d BlendedDeformer::State::solve(const Eigen::LLT<Eigen::MatrixXd>& factor,
+                                               const Eigen::Ref<const Eigen::MatrixX3d>& b) {
+  Eigen::MatrixX3d x(b.rows(), 3);
+  for (int c = 0; c < 3; ++c) x.col(c) = factor.solve(b.col(c));
+  return x;
+}
+
 void BlendedDeformer::State::local_step(const Eigen::Ref<const Eigen::MatrixX3d>& transformations,
                                         std::vector<Eigen::Matrix3d>& rotations,
                                         Eigen::VectorXd& dots) const {
@@ -99,7 +106,7 @@ Eigen::MatrixX3d BlendedDeformer::State::arap_right_side(const std::vector<Eigen
 Eigen::MatrixX3d BlendedDeformer::State::initial_solve(const Eigen::Ref<const Eigen::MatrixX3d>& right_side,
                                                        double& energy) const {
   if (options.sparsity <= 0.0) {
-    Eigen::MatrixX3d t = initial.solve(right_side);
+    Eigen::MatrixX3d t = solve(initial, right_side);
     energy = -t.cwiseProduct(right_side).sum();
     return t;
   }
@@ -193,7 +200,7 @@ BlendResult BlendedDeformer::continue_in_own_dictionary(const Eigen::Ref<const E
   // energy is quadratic in (T, s), with T = Q^-1 (b_c + s b_R) = T_c + s T_R, so s has a closed form
   // s = b_R.T_c / (N - b_R.T_R). Alternating s with T instead converges slowly when the scale is far
   // from 1. T_c is the same in every step.
-  const Eigen::MatrixX3d constrained_maps = s.global.solve(constraint_side);
+  const Eigen::MatrixX3d constrained_maps = State::solve(s.global, constraint_side);
   struct GlobalStep {
     Eigen::MatrixX3d transformations;
     double scale = 1.0;
@@ -202,7 +209,7 @@ BlendResult BlendedDeformer::continue_in_own_dictionary(const Eigen::Ref<const E
   const auto global_step = [&](const Eigen::Ref<const Eigen::MatrixX3d>& arap_side, double example_energy,
                                double fallback_scale) {
     GlobalStep step;
-    const Eigen::MatrixX3d arap_maps = s.global.solve(arap_side);
+    const Eigen::MatrixX3d arap_maps = State::solve(s.global, arap_side);
     step.scale = 1.0;
     if (o.estimate_scale) {
       const double curvature = example_energy - arap_side.cwiseProduct(arap_maps).sum();

@@ -4,6 +4,7 @@
 #include <Eigen/Cholesky>
 
 #include <string>
+#include <utility>
 
 namespace posekit {
 
@@ -16,23 +17,21 @@ DictionaryChange::DictionaryChange(const BlendDictionary& from, const BlendDicti
   const Eigen::MatrixXd target = to.matrix();
   const Eigen::MatrixXd weighted = mass.asDiagonal() * target;
   Eigen::MatrixXd normal = weighted.transpose() * target;
-  cross_ = weighted.transpose() * from.matrix();
+  Eigen::MatrixXd cross = weighted.transpose() * from.matrix();
   // The ridge only matters where D' is rank deficient (duplicate atoms); it picks the least-norm map.
   normal.diagonal().array() += 1e-10 * normal.diagonal().mean();
-  Eigen::LLT<Eigen::MatrixXd> llt(normal);
+  const Eigen::LLT<Eigen::MatrixXd> llt(normal);
   if (llt.info() != Eigen::Success) throw ArgumentError("DictionaryChange: the target dictionary is singular");
-  factor_ = llt.matrixL();
+  llt.solveInPlace(cross);
+  map_ = std::move(cross);
 }
 
 Eigen::MatrixX3d DictionaryChange::operator()(const Eigen::Ref<const Eigen::MatrixX3d>& transformations) const {
-  if (transformations.rows() != cross_.cols()) {
+  if (transformations.rows() != map_.cols()) {
     throw ArgumentError("DictionaryChange: " + std::to_string(transformations.rows()) + " transformation rows for a "
-                        "dictionary of " + std::to_string(cross_.cols()) + " atoms");
+                        "dictionary of " + std::to_string(map_.cols()) + " atoms");
   }
-  Eigen::MatrixX3d result = cross_ * transformations;
-  factor_.triangularView<Eigen::Lower>().solveInPlace(result);
-  factor_.triangularView<Eigen::Lower>().transpose().solveInPlace(result);
-  return result;
+  return map_ * transformations;
 }
 
 }  // namespace posekit

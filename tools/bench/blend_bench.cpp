@@ -2,7 +2,7 @@
 // interactive case) and its final vertex evaluation, one constraint replaced by a rank-one update against a full refactorization,
 // one interpolated frame. On the horse (horse-01.. as examples, horse-10's vertices as targets) with
 // 4 and 9 examples when ../shared/data is present, and on the generated demo arm. The same deformation
-// with the skeleton dictionary, and the skinning decomposition behind it (the 10 horse poses).
+// with the skeleton dictionary and its vertex evaluation, and the skinning decomposition behind it (the 10 horse poses).
 #include <posekit/blended_deformation.hpp>
 #include <posekit/demo_shape.hpp>
 #include <posekit/geometry.hpp>
@@ -137,9 +137,8 @@ BENCHMARK(BM_SkinningDecompositionHorse)->Unit(benchmark::kMillisecond)->Compute
 void BM_DeformArm(benchmark::State& state) { deform(state, arm()); }
 BENCHMARK(BM_DeformArm)->Unit(benchmark::kMillisecond)->ComputeStatistics("min", minimum);
 
-// The last part of every deformation: the vertices D T of the result.
-void BM_VerticesHorse(benchmark::State& state) {
-  Case* c = horse(static_cast<int>(state.range(0)));
+// The last part of every deformation: the vertices D T of the result, in either dictionary.
+void vertices(benchmark::State& state, Case* c) {
   if (c == nullptr) {
     state.SkipWithError("shared pose data not found: horse-poses");
     return;
@@ -148,7 +147,14 @@ void BM_VerticesHorse(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(c->deformer->vertices(result.transformations).data());
   report_sizes(state, *c);
 }
+
+void BM_VerticesHorse(benchmark::State& state) { vertices(state, horse(static_cast<int>(state.range(0)))); }
 BENCHMARK(BM_VerticesHorse)->Arg(4)->Arg(9)->Unit(benchmark::kMillisecond)->ComputeStatistics("min", minimum);
+
+void BM_VerticesHorseSkeleton(benchmark::State& state) {
+  vertices(state, horse(static_cast<int>(state.range(0)), DictionaryChoice::skeleton));
+}
+BENCHMARK(BM_VerticesHorseSkeleton)->Arg(4)->Arg(9)->Unit(benchmark::kMillisecond)->ComputeStatistics("min", minimum);
 
 // Moving one constraint to another vertex: a rank-one update and a downdate of both factors ...
 void BM_ReplaceConstraintHorse(benchmark::State& state) {

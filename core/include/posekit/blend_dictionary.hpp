@@ -80,7 +80,7 @@ BlendDictionary reduce_dictionary(const BlendDictionary& dictionary, int atom_co
 
 /// Carries transformations from one dictionary to another of the same vertex count by weighted least
 /// squares, T' = (D'^T M D')^-1 D'^T M D T (the paper's D'^+ D T with the mass matrix M as inner
-/// product, plus a ridge of 1e-10 of the mean diagonal for rank-deficient D'). Factorizes once.
+/// product, plus a ridge of 1e-10 of the mean diagonal for rank-deficient D'). Forms the map once.
 class DictionaryChange {
  public:
   /// `from` and `to` share #V; `mass` has #V positive entries. Throws ArgumentError otherwise.
@@ -89,8 +89,9 @@ class DictionaryChange {
   Eigen::MatrixX3d operator()(const Eigen::Ref<const Eigen::MatrixX3d>& transformations) const;
 
  private:
-  Eigen::MatrixXd cross_;  // D'^T M D
-  Eigen::MatrixXd factor_;  // Cholesky factor (lower) of D'^T M D' + ridge
+  // (D'^T M D' + ridge)^-1 D'^T M D, formed once: a change is then one product, where solving with
+  // the Cholesky factor on every call cost several times as much.
+  Eigen::MatrixXd map_;
 };
 
 }  // namespace posekit

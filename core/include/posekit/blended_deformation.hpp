@@ -49,7 +49,7 @@ struct BlendOptions {
   /// Iterations in the skeleton dictionary after the change (average, then minimal ARAP; >= 0); the
   /// counts below apply to the Laplace-Beltrami dictionary before it.
   int skeleton_average_iterations = 0;
-  int skeleton_minimal_iterations = 4;
+  int skeleton_minimal_iterations = 1;
   /// The skeleton dictionary holds the Laplace-Beltrami eigenfunctions beside the bone weights (true),
   /// or the bone weights alone, as in the paper (false).
   bool skeleton_keeps_eigenfunctions = true;
