@@ -38,7 +38,7 @@ Eigen::RowVectorXd BlendedDeformer::State::constraint_row(const LinearConstraint
       throw ArgumentError("constraint vertex " + std::to_string(v) + " is outside [0, " + std::to_string(vertex_count) + ")");
     }
     if (!std::isfinite(constraint.coefficients[i])) throw ArgumentError("a linear constraint has a non-finite coefficient");
-    for (int p = 0; p < atom_count(); ++p) row(p) += constraint.coefficients[i] * dictionary.value(v, p);
+    row += constraint.coefficients[i] * dictionary.rows({v}).row(0);
   }
   return row;
 }

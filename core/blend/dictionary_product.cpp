@@ -21,6 +21,10 @@ DictionaryProduct::DictionaryProduct(const BlendDictionary& dictionary) : atom_c
       dense.push_back(j);
     }
   }
+  // D T = sum_r x_r .* (W M)_r = sum_j w_j .* ([X 1] M_j): a product of one factor with the maps,
+  // then a sum weighted by the other. Multiplying the wider factor leaves the narrower intermediate
+  // (3 columns per column of the other factor) to sum over.
+  by_weight_ = 3 * k_count + 1 <= static_cast<int>(dense.size());
   coordinates_.resize(n, 3 * k_count + 1);
   for (int k = 0; k < k_count; ++k) coordinates_.middleCols<3>(3 * k) = dictionary.examples()[static_cast<size_t>(k)];
   coordinates_.col(3 * k_count).setOnes();
@@ -32,9 +36,10 @@ DictionaryProduct::DictionaryProduct(const BlendDictionary& dictionary) : atom_c
     const DictionaryAtom& a = dictionary.atoms()[static_cast<size_t>(p)];
     const int s = slot[static_cast<size_t>(a.weight)];
     if (s >= 0) {
+      const int coordinate = a.coordinate == 3 ? 3 * k_count : 3 * a.example + a.coordinate;
       factored_atoms_.push_back(p);
-      factored_rows_.push_back(a.coordinate == 3 ? 3 * k_count : 3 * a.example + a.coordinate);
-      factored_slots_.push_back(s);
+      map_rows_.push_back(by_weight_ ? s : coordinate);
+      map_columns_.push_back(3 * (by_weight_ ? coordinate : s));
       continue;
     }
     const int column = static_cast<int>(sparse_atoms_.size());
@@ -51,18 +56,11 @@ DictionaryProduct::DictionaryProduct(const BlendDictionary& dictionary) : atom_c
 Eigen::MatrixX3d DictionaryProduct::operator()(const Eigen::Ref<const Eigen::MatrixX3d>& t) const {
   const int n = rows();
   const auto weight_count = dense_weights_.cols();
-  // D T = sum_r x_r .* (W M)_r = sum_j w_j .* ([X 1] M_j): a product of one factor with the maps,
-  // then a sum weighted by the other. Multiplying the wider factor leaves the narrower intermediate
-  // (3 columns per column of the other factor) to sum over.
-  const bool by_weight = coordinates_.cols() <= weight_count;
-  const Eigen::MatrixXd& multiplied = by_weight ? dense_weights_ : coordinates_;
-  const Eigen::MatrixXd& summed = by_weight ? coordinates_ : dense_weights_;
+  const Eigen::MatrixXd& multiplied = by_weight_ ? dense_weights_ : coordinates_;
+  const Eigen::MatrixXd& summed = by_weight_ ? coordinates_ : dense_weights_;
   Eigen::MatrixXd maps = Eigen::MatrixXd::Zero(multiplied.cols(), 3 * summed.cols());
   for (size_t q = 0; q < factored_atoms_.size(); ++q) {
-    const int weight = factored_slots_[q];
-    const int coordinate = factored_rows_[q];
-    maps.block<1, 3>(by_weight ? weight : coordinate, 3 * (by_weight ? coordinate : weight)) +=
-        t.row(factored_atoms_[q]);
+    maps.block<1, 3>(map_rows_[q], map_columns_[q]) += t.row(factored_atoms_[q]);
   }
   Eigen::MatrixX3d sparse_t(static_cast<Eigen::Index>(sparse_atoms_.size()), 3);
   for (size_t q = 0; q < sparse_atoms_.size(); ++q) sparse_t.row(static_cast<Eigen::Index>(q)) = t.row(sparse_atoms_[q]);

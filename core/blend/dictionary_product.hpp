@@ -35,11 +35,13 @@ class DictionaryProduct {
 
  private:
   int atom_count_ = 0;
-  Eigen::MatrixXd coordinates_;      // #V by 3K + 1: [X^1 .. X^K 1]
-  Eigen::MatrixXd dense_weights_;    // #V by the weights held factored
-  std::vector<int> factored_atoms_;  // atoms of those weights ...
-  std::vector<int> factored_rows_;   // ... their row of M (3k + a, or 3K for a = 3) ...
-  std::vector<int> factored_slots_;  // ... and their weight's column in dense_weights_
+  Eigen::MatrixXd coordinates_;    // #V by 3K + 1: [X^1 .. X^K 1]
+  Eigen::MatrixXd dense_weights_;  // #V by the weights held factored
+  // The factor multiplied by the maps (true: dense_weights_, false: coordinates_); the other is summed.
+  bool by_weight_ = false;
+  std::vector<int> factored_atoms_;  // atoms of the factored weights, and where each row of T goes in
+  std::vector<int> map_rows_;        // the maps: row (its weight's or its coordinate's column in the
+  std::vector<int> map_columns_;     // multiplied factor) and first of three columns
   std::vector<int> sparse_atoms_;
   Eigen::SparseMatrix<double, Eigen::RowMajor> sparse_;
 };
