@@ -1,6 +1,7 @@
 // BlendedDeformer: the local/global iterations of one deformation.
 #include <posekit/error.hpp>
 
+#include "blend/block_kernels.hpp"
 #include "blend/deformer_state.hpp"
 #include "blend/rotation_fit.hpp"
 
@@ -31,8 +32,8 @@ double soft_threshold(double value, double threshold) {
 
 Eigen::MatrixX3d BlendedDeformer::State::solve(const Eigen::LLT<Eigen::MatrixXd>& factor,
                                                const Eigen::Ref<const Eigen::MatrixX3d>& b) {
-  Eigen::MatrixX3d x(b.rows(), 3);
-  for (int c = 0; c < 3; ++c) x.col(c) = factor.solve(b.col(c));
+  Eigen::MatrixX3d x = b;
+  detail::cholesky_solve(factor.matrixLLT(), x);
   return x;
 }
 
@@ -44,13 +45,9 @@ void BlendedDeformer::State::local_step(const Eigen::Ref<const Eigen::MatrixX3d>
   std::vector<double> block_dots(static_cast<size_t>(blocks));
   tbb::parallel_for(tbb::blocked_range<int>(0, blocks, 16), [&](const tbb::blocked_range<int>& range) {
     for (int j = range.begin(); j < range.end(); ++j) {
-      // S = T^T G_j as dot products of contiguous columns: a general matrix product would repack G
+      // S = T^T G_j by dot products of contiguous columns: a general matrix product would repack G
       // (the largest array of the iteration) on every call.
-      Eigen::Matrix3d s;
-      for (int b = 0; b < 3; ++b) {
-        const auto column = projected.col(3 * j + b);
-        for (int a = 0; a < 3; ++a) s(a, b) = transformations.col(a).dot(column);
-      }
+      const Eigen::Matrix3d s = detail::block_product(transformations, projected.middleCols<3>(3 * j));
       const Eigen::Matrix3d r = detail::closest_rotation(s);
       rotations[static_cast<size_t>(j)] = r;
       block_dots[static_cast<size_t>(j)] = r.cwiseProduct(s).sum();
@@ -67,15 +64,9 @@ void BlendedDeformer::State::accumulate_blocks(int first, int last, const Eigen:
   tbb::parallel_for(0, (rows + chunk - 1) / chunk, [&](int part) {
     const int top = part * chunk;
     const int height = std::min(chunk, rows - top);
-    auto out = side.middleRows(top, height);
     for (int j = first; j < last; ++j) {
-      for (int b = 0; b < 3; ++b) {
-        const auto column = projected.col(3 * j + b).segment(top, height);
-        const int row = 3 * j + b;
-        out.col(0) += stacked(row, 0) * column;
-        out.col(1) += stacked(row, 1) * column;
-        out.col(2) += stacked(row, 2) * column;
-      }
+      detail::accumulate_block(projected.middleCols<3>(3 * j).middleRows(top, height), stacked.middleRows<3>(3 * j),
+                               side.middleRows(top, height));
     }
   });
 }

@@ -45,8 +45,8 @@ struct BlendedDeformer::State {
   std::unique_ptr<BlendedDeformer> richer;
   std::unique_ptr<DictionaryChange> change;
 
-  /// x = A^-1 b for the factor of A, one column of the maps at a time: at a few hundred atoms Eigen's
-  /// vector solve is a third faster than its solve of three columns together.
+  /// x = A^-1 b for the factor of A, the three columns of the maps in one pass over the factor each
+  /// way (detail::cholesky_solve).
   static Eigen::MatrixX3d solve(const Eigen::LLT<Eigen::MatrixXd>& factor, const Eigen::Ref<const Eigen::MatrixX3d>& b);
 
   int atom_count() const { return static_cast<int>(product.cols()); }

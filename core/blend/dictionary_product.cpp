@@ -1,5 +1,7 @@
 #include "blend/dictionary_product.hpp"
 
+#include "blend/block_kernels.hpp"
+
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -66,22 +68,16 @@ Eigen::MatrixX3d DictionaryProduct::operator()(const Eigen::Ref<const Eigen::Mat
   for (size_t q = 0; q < sparse_atoms_.size(); ++q) sparse_t.row(static_cast<Eigen::Index>(q)) = t.row(sparse_atoms_[q]);
 
   Eigen::MatrixX3d result(n, 3);
-  // Blocks small enough that the intermediate of one block stays in cache for the weighted sum.
+  // Blocks of rows, one task each.
   const int block = 1024;
   tbb::parallel_for(0, (n + block - 1) / block, [&](int b) {
     const int first = b * block;
     const int height = std::min(block, n - first);
     auto part = result.middleRows(first, height);
-    part.setZero();
     if (weight_count > 0) {
-      Eigen::MatrixXd mapped(height, maps.cols());
-      mapped.noalias() = multiplied.middleRows(first, height) * maps;
-      for (Eigen::Index i = 0; i < summed.cols(); ++i) {
-        const auto factor = summed.col(i).segment(first, height);
-        part.col(0) += factor.cwiseProduct(mapped.col(3 * i));
-        part.col(1) += factor.cwiseProduct(mapped.col(3 * i + 1));
-        part.col(2) += factor.cwiseProduct(mapped.col(3 * i + 2));
-      }
+      factored_block_product(multiplied.middleRows(first, height), summed.middleRows(first, height), maps, part);
+    } else {
+      part.setZero();
     }
     if (!sparse_atoms_.empty()) part.noalias() += sparse_.middleRows(first, height) * sparse_t;
   });
