@@ -78,8 +78,8 @@ POSEKIT_BLOCK_KERNEL void triangular_solves(const double* l, std::ptrdiff_t n, s
   }
 }
 
-// Rows per tile: the three sums of a tile stay in vector registers while the columns of both factors
-// stream past.
+// Rows per tile: few enough that a tile's six running sums stay in vector registers (AVX-512) or the
+// first-level cache while the columns of both factors stream past.
 constexpr std::ptrdiff_t kTileRows = 16;
 
 // out_c[r] = sum_j s_j[r] sum_k a_k[r] maps(k, 3 j + c) for r < rows <= kTileRows; a_k, s_j are the
@@ -121,6 +121,7 @@ POSEKIT_BLOCK_KERNEL void factored_tile(const double* a, std::ptrdiff_t lda, std
 }  // namespace
 
 void cholesky_solve(const Eigen::MatrixXd& factor, Eigen::Ref<Eigen::MatrixX3d> x) {
+  eigen_assert(factor.rows() == factor.cols() && factor.rows() == x.rows());
   triangular_solves(factor.data(), factor.rows(), factor.outerStride(), x.col(0).data(), x.col(1).data(),
                     x.col(2).data());
 }
@@ -128,6 +129,8 @@ void cholesky_solve(const Eigen::MatrixXd& factor, Eigen::Ref<Eigen::MatrixX3d> 
 void factored_block_product(const Eigen::Ref<const Eigen::MatrixXd>& multiplied,
                             const Eigen::Ref<const Eigen::MatrixXd>& summed, const Eigen::MatrixXd& maps,
                             Eigen::Ref<Eigen::MatrixX3d> out) {
+  eigen_assert(maps.rows() == multiplied.cols() && maps.cols() == 3 * summed.cols());
+  eigen_assert(multiplied.rows() == out.rows() && summed.rows() == out.rows());
   const std::ptrdiff_t rows = out.rows();
   for (std::ptrdiff_t first = 0; first < rows; first += kTileRows) {
     const std::ptrdiff_t height = std::min(kTileRows, rows - first);
@@ -139,6 +142,7 @@ void factored_block_product(const Eigen::Ref<const Eigen::MatrixXd>& multiplied,
 
 Eigen::Matrix3d block_product(const Eigen::Ref<const Eigen::MatrixX3d>& t,
                               const Eigen::Ref<const Eigen::MatrixX3d>& block) {
+  eigen_assert(t.rows() == block.rows());
   double s[9];
   column_products(t.col(0).data(), t.col(1).data(), t.col(2).data(), block.col(0).data(), block.col(1).data(),
                   block.col(2).data(), t.rows(), s);
@@ -149,6 +153,7 @@ Eigen::Matrix3d block_product(const Eigen::Ref<const Eigen::MatrixX3d>& t,
 
 void accumulate_block(const Eigen::Ref<const Eigen::MatrixX3d>& block, const Eigen::Matrix3d& m,
                       Eigen::Ref<Eigen::MatrixX3d> side) {
+  eigen_assert(block.rows() == side.rows());
   const double row_major[9] = {m(0, 0), m(0, 1), m(0, 2), m(1, 0), m(1, 1), m(1, 2), m(2, 0), m(2, 1), m(2, 2)};
   column_sums(block.col(0).data(), block.col(1).data(), block.col(2).data(), row_major, block.rows(),
               side.col(0).data(), side.col(1).data(), side.col(2).data());

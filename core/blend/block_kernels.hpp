@@ -17,16 +17,13 @@ Eigen::Matrix3d block_product(const Eigen::Ref<const Eigen::MatrixX3d>& t,
 void accumulate_block(const Eigen::Ref<const Eigen::MatrixX3d>& block, const Eigen::Matrix3d& m,
                       Eigen::Ref<Eigen::MatrixX3d> side);
 
-}  // namespace posekit::detail
-
-namespace posekit::detail {
-
 /// x = (L L^T)^-1 x in place for the three columns of x together (one pass over L each way); `factor`
 /// holds L in its lower triangle, as Eigen::LLT::matrixLLT() does.
 void cholesky_solve(const Eigen::MatrixXd& factor, Eigen::Ref<Eigen::MatrixX3d> x);
 
 /// out(i, c) = sum_j summed(i, j) sum_k multiplied(i, k) maps(k, 3 j + c): the dictionary's factored
 /// product D T (DictionaryProduct) for the rows of one block, without forming multiplied * maps.
+/// maps is multiplied.cols() by 3 summed.cols(); the rows of both factors and `out` match.
 void factored_block_product(const Eigen::Ref<const Eigen::MatrixXd>& multiplied,
                             const Eigen::Ref<const Eigen::MatrixXd>& summed, const Eigen::MatrixXd& maps,
                             Eigen::Ref<Eigen::MatrixX3d> out);
