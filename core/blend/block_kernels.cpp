@@ -14,8 +14,9 @@ namespace {
 #define POSEKIT_BLOCK_KERNEL
 #endif
 
-// Nine dot products of three columns of t with three of g in one pass; `omp simd reduction` lets
-// the sums run in vector lanes (a reordering the compiler may not make on its own).
+// Nine dot products of three columns of t with three of g in one pass, into s(a, b) = t_a . g_b
+// column-major; `omp simd reduction` lets the sums run in vector lanes (a reordering the compiler may
+// not make on its own).
 POSEKIT_BLOCK_KERNEL void column_products(const double* t0, const double* t1, const double* t2, const double* g0,
                                           const double* g1, const double* g2, std::ptrdiff_t n, double* s) {
   double s00 = 0, s01 = 0, s02 = 0, s10 = 0, s11 = 0, s12 = 0, s20 = 0, s21 = 0, s22 = 0;
@@ -31,13 +32,13 @@ POSEKIT_BLOCK_KERNEL void column_products(const double* t0, const double* t1, co
     s21 += t2[i] * g1[i];
     s22 += t2[i] * g2[i];
   }
-  s[0] = s00, s[1] = s01, s[2] = s02, s[3] = s10, s[4] = s11, s[5] = s12, s[6] = s20, s[7] = s21, s[8] = s22;
+  s[0] = s00, s[1] = s10, s[2] = s20, s[3] = s01, s[4] = s11, s[5] = s21, s[6] = s02, s[7] = s12, s[8] = s22;
 }
 
-// o_c += g0 m(0, c) + g1 m(1, c) + g2 m(2, c) for c = 0..2; m is row-major here.
+// o_c += g0 m(0, c) + g1 m(1, c) + g2 m(2, c) for c = 0..2; m is 3 by 3, column-major.
 POSEKIT_BLOCK_KERNEL void column_sums(const double* g0, const double* g1, const double* g2, const double* m,
                                       std::ptrdiff_t n, double* o0, double* o1, double* o2) {
-  const double m00 = m[0], m01 = m[1], m02 = m[2], m10 = m[3], m11 = m[4], m12 = m[5], m20 = m[6], m21 = m[7],
+  const double m00 = m[0], m10 = m[1], m20 = m[2], m01 = m[3], m11 = m[4], m21 = m[5], m02 = m[6], m12 = m[7],
                m22 = m[8];
 #pragma omp simd
   for (std::ptrdiff_t i = 0; i < n; ++i) {
@@ -143,19 +144,16 @@ void factored_block_product(const Eigen::Ref<const Eigen::MatrixXd>& multiplied,
 Eigen::Matrix3d block_product(const Eigen::Ref<const Eigen::MatrixX3d>& t,
                               const Eigen::Ref<const Eigen::MatrixX3d>& block) {
   eigen_assert(t.rows() == block.rows());
-  double s[9];
-  column_products(t.col(0).data(), t.col(1).data(), t.col(2).data(), block.col(0).data(), block.col(1).data(),
-                  block.col(2).data(), t.rows(), s);
   Eigen::Matrix3d product;
-  product << s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], s[8];
+  column_products(t.col(0).data(), t.col(1).data(), t.col(2).data(), block.col(0).data(), block.col(1).data(),
+                  block.col(2).data(), t.rows(), product.data());
   return product;
 }
 
 void accumulate_block(const Eigen::Ref<const Eigen::MatrixX3d>& block, const Eigen::Matrix3d& m,
                       Eigen::Ref<Eigen::MatrixX3d> side) {
   eigen_assert(block.rows() == side.rows());
-  const double row_major[9] = {m(0, 0), m(0, 1), m(0, 2), m(1, 0), m(1, 1), m(1, 2), m(2, 0), m(2, 1), m(2, 2)};
-  column_sums(block.col(0).data(), block.col(1).data(), block.col(2).data(), row_major, block.rows(),
+  column_sums(block.col(0).data(), block.col(1).data(), block.col(2).data(), m.data(), block.rows(),
               side.col(0).data(), side.col(1).data(), side.col(2).data());
 }
 

@@ -24,8 +24,8 @@ DictionaryProduct::DictionaryProduct(const BlendDictionary& dictionary) : atom_c
     }
   }
   // D T = sum_r x_r .* (W M)_r = sum_j w_j .* ([X 1] M_j): a product of one factor with the maps,
-  // then a sum weighted by the other. Multiplying the wider factor leaves the narrower intermediate
-  // (3 columns per column of the other factor) to sum over.
+  // summed against the other. The product costs the same either way; the sums run over the summed
+  // factor's columns, so the narrower factor is summed.
   by_weight_ = 3 * k_count + 1 <= static_cast<int>(dense.size());
   coordinates_.resize(n, 3 * k_count + 1);
   for (int k = 0; k < k_count; ++k) coordinates_.middleCols<3>(3 * k) = dictionary.examples()[static_cast<size_t>(k)];
