@@ -1,5 +1,7 @@
 #include "interpolate/sparse_cholesky.hpp"
 
+#include "interpolate/serialized_openmp.hpp"
+
 #include <Eigen/CholmodSupport>
 #include <Eigen/SparseCholesky>
 
@@ -25,6 +27,7 @@ void SparseCholesky::analyze_pattern(const Eigen::SparseMatrix<double>& matrix) 
   Factorization& f = *factorization_;
   f.use_cholmod = matrix.rows() >= f.cholmod_rows;
   if (f.use_cholmod) {
+    const SerializedOpenMpRegions serialized;
     f.cholmod.analyzePattern(matrix);
   } else {
     f.simplicial.analyzePattern(matrix);
@@ -34,6 +37,7 @@ void SparseCholesky::analyze_pattern(const Eigen::SparseMatrix<double>& matrix) 
 bool SparseCholesky::factorize(const Eigen::SparseMatrix<double>& matrix) {
   Factorization& f = *factorization_;
   if (f.use_cholmod) {
+    const SerializedOpenMpRegions serialized;
     f.cholmod.factorize(matrix);
     return f.cholmod.info() == Eigen::Success;
   }
@@ -43,7 +47,9 @@ bool SparseCholesky::factorize(const Eigen::SparseMatrix<double>& matrix) {
 
 Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& rhs) const {
   const Factorization& f = *factorization_;
-  return f.use_cholmod ? Eigen::VectorXd(f.cholmod.solve(rhs)) : Eigen::VectorXd(f.simplicial.solve(rhs));
+  if (!f.use_cholmod) return f.simplicial.solve(rhs);
+  const SerializedOpenMpRegions serialized;
+  return f.cholmod.solve(rhs);
 }
 
 bool SparseCholesky::uses_cholmod() const { return factorization_->use_cholmod; }

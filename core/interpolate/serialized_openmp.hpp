@@ -1,0 +1,29 @@
+// CHOLMOD's supernodal factorization opens OpenMP regions of its own beside the threads of the BLAS
+// it calls, and an OpenMP team waits for its next region spinning before it sleeps. With few cores
+// those waiting threads take the cores from the BLAS's threads and from TBB's: the edge-space pose
+// of a 42,321-vertex mesh took 14.6 s with CHOLMOD's OpenMP regions and 8.5 s with them run on one
+// thread, the same pose to the bit (docs/interpolate.md, "Speed"). The regions are serialized only
+// while CHOLMOD works; the BLAS keeps its threads.
+#pragma once
+
+namespace posekit::interpolation {
+
+/// While one lives, the parallel regions its thread opens (CHOLMOD's, called from that thread) run on
+/// one thread: the OpenMP runtime already loaded in the process, if any, has that thread's
+/// max-active-levels set to 0, a setting OpenMP keeps per thread; its end restores the level it
+/// found. Other threads are not touched. Does nothing where no OpenMP runtime is loaded.
+class SerializedOpenMpRegions {
+ public:
+  SerializedOpenMpRegions();
+  ~SerializedOpenMpRegions();
+  SerializedOpenMpRegions(const SerializedOpenMpRegions&) = delete;
+  SerializedOpenMpRegions& operator=(const SerializedOpenMpRegions&) = delete;
+
+  /// The runtime's max-active-levels of the calling thread; -1 where no OpenMP runtime is loaded.
+  static int max_active_levels();
+
+ private:
+  int levels_before_;
+};
+
+}  // namespace posekit::interpolation
