@@ -1,9 +1,9 @@
 // CHOLMOD's supernodal factorization opens OpenMP regions of its own beside the threads of the BLAS
 // it calls, and an OpenMP team waits for its next region spinning before it sleeps. With few cores
-// those waiting threads take the cores from the BLAS's threads and from TBB's: the edge-space pose
-// of a 42,321-vertex mesh took 14.6 s with CHOLMOD's OpenMP regions and 8.5 s with them run on one
-// thread, the same pose to the bit (docs/interpolate.md, "Speed"). The regions are serialized only
-// while CHOLMOD works; the BLAS keeps its threads.
+// those waiting threads take the cores from the BLAS's threads and from TBB's, and the whole mesh's
+// edge-space pose took half as long again with them as with the regions run on one thread, to the
+// same bits (docs/interpolate.md, "Speed"). The regions are serialized only while CHOLMOD works;
+// the BLAS keeps its threads.
 #pragma once
 
 namespace posekit::interpolation {

@@ -4,7 +4,8 @@
 // tens of thousands of vertices: several times faster than a simplicial LDLT there. Small systems
 // keep Eigen's simplicial LDLT: CHOLMOD saves at most a fifth of the time on them, and the
 // corrections that go through an edge-space pose are sensitive to the last bits of its solution
-// (docs/interpolate.md, "Speed"). CHOLMOD's headers stay in the source file.
+// (docs/interpolate.md, "Speed"). CHOLMOD's own OpenMP regions run on one thread while it works
+// (serialized_openmp.hpp). CHOLMOD's headers stay in the source file.
 #pragma once
 
 #include <Eigen/Core>
