@@ -33,7 +33,7 @@ class OpenMpRuntime {
   }
 
   void restore(int levels) const {
-    if (set_ != nullptr && levels >= 0) set_(levels);
+    if (set_ != nullptr) set_(levels);
   }
 
   int levels() const { return get_ == nullptr ? -1 : get_(); }

@@ -25,7 +25,8 @@ TEST(BlockKernels, ProductOfMapsAndBlockMatchesEigen) {
     for (int j = 0; j < 4; ++j) {
       const Eigen::Matrix3d expected = t.transpose() * g.middleCols<3>(3 * j);
       const Eigen::Matrix3d product = block_product(t, g.middleCols<3>(3 * j));
-      EXPECT_LT((product - expected).cwiseAbs().maxCoeff(), 1e-12 * static_cast<double>(rows)) << rows << " rows, block " << j;
+      EXPECT_LT((product - expected).cwiseAbs().maxCoeff(), 1e-12 * static_cast<double>(rows))
+          << rows << " rows, block " << j;
     }
   }
 }
