@@ -172,6 +172,9 @@ class ContactSeparationStage final : public RepairStage {
     return RepairStage::enabled(options) && options.reproduction_rings >= 0;
   }
 
+  // The two places keep the shared outcome by different rules.
+  std::string repair() const override { return info().name + (early_ ? " (early)" : " (late)"); }
+
   bool wanted(const Candidate& current, const CorrectionContext& context) const override {
     if (early_) return 2 * current.new_face_count() > context.target_new_faces;
     return current.new_face_count() > 0 ||

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <map>
 
 namespace posekit::detail {
 
@@ -80,6 +81,9 @@ RepairLadder default_repair_ladder() {
 Candidate run_repair_ladder(const RepairLadder& ladder, Candidate start, CorrectionContext& context,
                             std::vector<StageReport>& reports) {
   Candidate current = std::move(start);
+  // The candidate's version (proposals kept so far) and, per repair, the version it last ran on.
+  int version = 0;
+  std::map<std::string, int> ran_on;
   for (const std::unique_ptr<RepairStage>& stage : ladder) {
     StageReport report;
     report.name = stage->info().name;
@@ -90,14 +94,18 @@ Candidate run_repair_ladder(const RepairLadder& ladder, Candidate start, Correct
       report.skipped = "nested run";
     } else if (!stage->wanted(current, context)) {
       report.skipped = "nothing to repair";
+    } else if (const auto seen = ran_on.find(stage->repair()); seen != ran_on.end() && seen->second == version) {
+      report.skipped = "unchanged since it ran";
     } else {
       const auto begin = std::chrono::steady_clock::now();
       context.report_progress(report.name, 0.0);
       report.ran = true;
+      ran_on[stage->repair()] = version;
       std::optional<Candidate> proposal = stage->run(current, context, report);
       if (proposal && better(*proposal, current, context)) {
         current = std::move(*proposal);
         report.kept = true;
+        ++version;
       }
       if (!report.kept) report.note.clear();
       report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();

@@ -12,8 +12,9 @@ namespace posekit::detail {
 RepairLadder default_repair_ladder();
 
 /// Runs every stage of `ladder` on `start` in order: a stage runs when the options enable it, the
-/// context's scope includes it and it is wanted; its proposal replaces the candidate when better
-/// (better()). Appends one entry per stage to `reports`, run or not, and returns the last candidate.
+/// context's scope includes it, it is wanted and no stage of its repair ran on the same candidate
+/// before; its proposal replaces the candidate when better (better()). Appends one entry per stage
+/// to `reports`, run or not, and returns the last candidate.
 Candidate run_repair_ladder(const RepairLadder& ladder, Candidate start, CorrectionContext& context,
                             std::vector<StageReport>& reports);
 

@@ -12,6 +12,7 @@
 
 #include <memory>
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -31,6 +32,10 @@ class RepairStage {
   virtual bool enabled(const CorrectionOptions& options) const;
   /// Whether there is anything for the stage to do on `current`: by default, new faces remain.
   virtual bool wanted(const Candidate& current, const CorrectionContext& context) const;
+  /// Stages of one repair propose the same for the same candidate and keep it by the same rule, so
+  /// the ladder does not run one on a candidate another has already left unchanged: by default, the
+  /// stages of one name.
+  virtual std::string repair() const { return info_.name; }
   /// A candidate to compare with `current`, or none. Fills `report`'s regions, vertices, note and
   /// details; the ladder fills the rest.
   virtual std::optional<Candidate> run(const Candidate& current, CorrectionContext& context, StageReport& report) = 0;

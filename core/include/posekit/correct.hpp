@@ -156,7 +156,7 @@ struct FieldReport {
 struct StageReport {
   std::string name;             ///< as in repair_stages()
   bool ran = false;
-  std::string skipped;          ///< why it did not run: "disabled", "nested run" or "nothing to repair"
+  std::string skipped;          ///< why it did not run: "disabled", "nested run", "nothing to repair" or "unchanged since it ran"
   bool kept = false;            ///< its pose replaced the candidate: fewer new faces, or as many and nearer the target
   int new_faces_before = 0;     ///< new intersecting faces of the candidate it started from
   int new_faces_after = 0;      ///< and of the candidate after it

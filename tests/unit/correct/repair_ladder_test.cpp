@@ -1,5 +1,6 @@
-// The repair ladder: its stages run in their order, each only when enabled, in scope and wanted;
-// a proposal replaces the candidate only when better; every stage has its report entry.
+// The repair ladder: its stages run in their order, each only when enabled, in scope, wanted and
+// not already run on the same candidate; a proposal replaces the candidate only when better; every
+// stage has its report entry.
 #include "correct/repair_ladder.hpp"
 
 #include "bent_arm.hpp"
@@ -106,6 +107,47 @@ TEST_F(RepairLadderTest, RunsStagesInOrderAndKeepsOnlyBetterProposals) {
   EXPECT_TRUE(reports[4].note.empty());  // a note only for what was kept
   EXPECT_EQ(reports[4].new_faces_after, 0);
   EXPECT_EQ(end.pose(), arm_->pose(0));
+}
+
+// A stage does not run again on the candidate a stage of its repair left unchanged; it does once
+// another stage changed the candidate.
+TEST_F(RepairLadderTest, SkipsARepairOnTheCandidateItLeftUnchanged) {
+  testing::StageFixture fixture(arm_->pose(0), arm_->pose(1), arm_->faces(), CorrectionOptions{});
+  std::vector<std::string> log;
+  RepairLadder ladder;
+  const auto repeat = [&] {
+    // Proposes the entangled target: never better than the candidate it starts from.
+    return std::make_unique<RecordingStage>("repeat", kEveryScope, log, true, arm_->pose(1));
+  };
+  ladder.push_back(repeat());
+  ladder.push_back(repeat());
+  ladder.push_back(std::make_unique<RecordingStage>("change", kEveryScope, log, false, arm_->pose(0)));
+  ladder.push_back(repeat());
+  ladder.push_back(repeat());
+  std::vector<StageReport> reports;
+  run_repair_ladder(ladder, fixture.candidate(arm_->pose(1)), fixture.context, reports);
+
+  EXPECT_EQ(log, (std::vector<std::string>{"repeat", "change", "repeat"}));
+  ASSERT_EQ(reports.size(), 5u);
+  EXPECT_TRUE(reports[0].ran);
+  EXPECT_FALSE(reports[0].kept);
+  EXPECT_FALSE(reports[1].ran);
+  EXPECT_EQ(reports[1].skipped, "unchanged since it ran");
+  EXPECT_TRUE(reports[2].kept);
+  EXPECT_TRUE(reports[3].ran);
+  EXPECT_EQ(reports[4].skipped, "unchanged since it ran");
+}
+
+// The separation of the target's contacts keeps its one outcome by two rules (early: only when
+// clean; late: when better), so its two places are different repairs; every other name is one.
+TEST(RepairLadder, RepairsAreNamedByStageButTheSeparationsDiffer) {
+  std::vector<std::string> separations;
+  for (const std::unique_ptr<RepairStage>& stage : default_repair_ladder()) {
+    if (stage->info().name == "contact-separation") separations.push_back(stage->repair());
+    else EXPECT_EQ(stage->repair(), stage->info().name);
+  }
+  ASSERT_EQ(separations.size(), 2u);
+  EXPECT_NE(separations[0], separations[1]);
 }
 
 TEST(RepairLadder, DefaultOrderIsTheDocumentedOne) {
