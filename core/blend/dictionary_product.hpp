@@ -15,8 +15,8 @@ namespace posekit::detail {
 /// where M_j gathers the rows of T of weight j into a (3K + 1) by 3 matrix. For the weights that cover
 /// most of the mesh (eigenfunctions, a constant weight) this is a product of one factor with the maps
 /// summed against the other, in tiles of vertices (detail::factored_block_product): it reads
-/// #V (3K + 1 + m) values where D T reads the #V N of D, and it keeps D out of memory. Atoms of weights that vanish on most of the mesh (bones) are held as a
-/// row-major sparse block of D.
+/// #V (3K + 1 + m) values where D T reads the #V N of D, and it keeps D out of memory. Atoms of
+/// weights that vanish on most of the mesh (bones) are held as a row-major sparse block of D.
 class DictionaryProduct {
  public:
   DictionaryProduct() = default;

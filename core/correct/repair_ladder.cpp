@@ -88,19 +88,20 @@ Candidate run_repair_ladder(const RepairLadder& ladder, Candidate start, Correct
     StageReport report;
     report.name = stage->info().name;
     report.new_faces_before = current.new_face_count();
+    const std::string repair = stage->repair();
     if (!stage->enabled(context.options)) {
       report.skipped = "disabled";
     } else if (!stage->runs_in(context.scope)) {
       report.skipped = "nested run";
     } else if (!stage->wanted(current, context)) {
       report.skipped = "nothing to repair";
-    } else if (const auto seen = ran_on.find(stage->repair()); seen != ran_on.end() && seen->second == version) {
+    } else if (const auto seen = ran_on.find(repair); seen != ran_on.end() && seen->second == version) {
       report.skipped = "unchanged since it ran";
     } else {
       const auto begin = std::chrono::steady_clock::now();
       context.report_progress(report.name, 0.0);
       report.ran = true;
-      ran_on[stage->repair()] = version;
+      ran_on[repair] = version;
       std::optional<Candidate> proposal = stage->run(current, context, report);
       if (proposal && better(*proposal, current, context)) {
         current = std::move(*proposal);
