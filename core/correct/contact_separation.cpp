@@ -176,7 +176,7 @@ class ContactSeparationStage final : public RepairStage {
   std::string repair() const override { return info().name + (early_ ? " (early)" : " (late)"); }
 
   bool wanted(const Candidate& current, const CorrectionContext& context) const override {
-    if (early_) return 2 * current.new_face_count() > context.target_new_faces;
+    if (early_) return context.entangled_throughout(current.new_face_count());
     return current.new_face_count() > 0 ||
            median_distance(current.pose(), context.target) > context.options.separation_tolerance * context.diagonal;
   }

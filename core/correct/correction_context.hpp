@@ -57,6 +57,9 @@ struct CorrectionContext {
   std::optional<FieldOutcome> field;         ///< set by the field correction
 
   int vertex_count() const { return static_cast<int>(reference.rows()); }
+  /// Whether a candidate with `new_faces` new intersecting faces still has at least half of the
+  /// target's own: the pose is entangled throughout, not in a few places.
+  bool entangled_throughout(int new_faces) const { return 2 * new_faces > target_new_faces; }
   void report_progress(const std::string& step, double fraction) const {
     if (progress) progress(step, fraction);
   }

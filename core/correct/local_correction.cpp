@@ -40,6 +40,14 @@ class LocalCorrectionStage final : public RepairStage {
                     scope_bit(CorrectionScope::whole_pose) | scope_bit(CorrectionScope::leg) |
                         scope_bit(CorrectionScope::stretch_retry)) {}
 
+  // Not where the candidate still has at least half of the target's new faces: the pose is then
+  // entangled throughout, the regions around its faces join into large parts of the pose whose own
+  // corrections cost the most and free the least, and what follows (the relaxation and the push,
+  // the legs through the halfway pose, the wider collar) frees such poses on its own.
+  bool wanted(const Candidate& current, const CorrectionContext& context) const override {
+    return RepairStage::wanted(current, context) && !context.entangled_throughout(current.new_face_count());
+  }
+
   std::optional<Candidate> run(const Candidate& current, CorrectionContext& context, StageReport& report) override {
     Candidate corrected = current;
     SweepOutcome outcome = correct_regions_locally(corrected, context);

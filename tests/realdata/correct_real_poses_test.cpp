@@ -133,8 +133,9 @@ TEST_P(CorrectRealPose, RemovesNewIntersectionsAndReproducesTheRest) { expect_co
 INSTANTIATE_TEST_SUITE_P(SharedPoses, CorrectRealPose, ::testing::ValuesIn(shared_targets()), pose_name);
 
 // The published method, every vertex in one field, on poses that each stage of the ladder frees:
-// the field alone, the fallback, the rollback, the local correction, the contact separation and the
-// legs through the halfway pose. A different stage freeing one of them is a change of behaviour.
+// the field alone, the fallback, the rollback, the relaxation, the local correction, the contact
+// separation and the legs through the halfway pose. A different stage freeing one of them is a
+// change of behaviour.
 class CorrectRealPoseWholeMesh : public ::testing::TestWithParam<PosePair> {};
 
 TEST_P(CorrectRealPoseWholeMesh, RemovesNewIntersectionsAndReproducesTheRest) {
@@ -153,7 +154,7 @@ std::vector<PosePair> whole_mesh_targets() {
           animal_pose("lion", "03", "fallback"),
           {"horse-poses/horse-10.obj", "horse-poses/horse-04.obj", "field"},
           animal_pose("cat", "08", "rollback"),
-          animal_pose("lion", "08", "local-correction"),
+          animal_pose("lion", "08", "relaxation"),
           animal_pose("lion", "09", "contact-separation"),
           animal_pose("lion", "04", "local-correction"),
           animal_pose("cat", "04", "local-correction"),

@@ -1,5 +1,6 @@
 #include "correct/local_correction.hpp"
 
+#include "correct/repair_stage.hpp"
 #include "correction_fixture.hpp"
 #include "two_sheets.hpp"
 
@@ -47,6 +48,27 @@ TEST(LocalCorrection, LeavesACleanResultAlone) {
   const SweepOutcome local = correct_regions_locally(result, fixture.context);
   EXPECT_EQ(local.regions, 0);
   EXPECT_EQ(result.pose(), clean_pose);
+}
+
+// Where the candidate still has at least half of the target's new faces, the pose is entangled
+// throughout and the local correction leaves it to the stages after it, in every scope; where fewer
+// remain, it runs.
+TEST(LocalCorrection, LeavesAPoseEntangledThroughoutToTheStagesAfterIt) {
+  const TwoSheets sheets = two_sheets(25);
+  const Eigen::MatrixX3d entangled = waved(dented(sheets, 0.4));
+  testing::StageFixture fixture(waved(sheets.vertices), entangled, sheets.faces);
+  const Candidate as_target = fixture.candidate(entangled);
+  const Candidate shallower = fixture.candidate(waved(dented(sheets, 0.22)));
+  ASSERT_GT(as_target.new_face_count(), 0);
+  ASSERT_GT(shallower.new_face_count(), 0);
+  ASSERT_LE(2 * shallower.new_face_count(), fixture.context.target_new_faces);
+  const std::unique_ptr<RepairStage> stage = make_local_correction_stage();
+  for (const CorrectionScope scope : {CorrectionScope::whole_pose, CorrectionScope::leg, CorrectionScope::stretch_retry}) {
+    fixture.context.scope = scope;
+    EXPECT_FALSE(stage->wanted(as_target, fixture.context));
+    EXPECT_TRUE(stage->wanted(shallower, fixture.context));
+    EXPECT_FALSE(stage->wanted(fixture.candidate(waved(sheets.vertices)), fixture.context));
+  }
 }
 
 }  // namespace
