@@ -63,7 +63,8 @@ TEST(LocalCorrection, LeavesAPoseEntangledThroughoutToTheStagesAfterIt) {
   ASSERT_GT(shallower.new_face_count(), 0);
   ASSERT_LE(2 * shallower.new_face_count(), fixture.context.target_new_faces);
   const std::unique_ptr<RepairStage> stage = make_local_correction_stage();
-  for (const CorrectionScope scope : {CorrectionScope::whole_pose, CorrectionScope::leg, CorrectionScope::stretch_retry}) {
+  for (const CorrectionScope scope :
+       {CorrectionScope::whole_pose, CorrectionScope::leg, CorrectionScope::stretch_retry}) {
     fixture.context.scope = scope;
     EXPECT_FALSE(stage->wanted(as_target, fixture.context));
     EXPECT_TRUE(stage->wanted(shallower, fixture.context));
