@@ -57,9 +57,11 @@ void add_local_repairs(RepairLadder& ladder, bool all) {
 // Field, the fallback and the first local repairs; where they freed less than half of what the
 // target had, the separation of the target's contacts, which frees poses pressed together
 // throughout in a few seconds; then the costly stages, each a region or the whole motion corrected
-// anew and followed by the local repairs; then the target given back wherever nothing is wrong,
-// stretched regions given its shape, the separation of the target's contacts competing as is, and
-// last, where faces remain, the whole correction again with a wider collar.
+// anew and followed by the local repairs (the local correction twice: a pose entangled throughout
+// is left to the relaxation and the push first, and what they leave is corrected locally after
+// them); then the target given back wherever nothing is wrong, stretched regions given its shape,
+// the separation of the target's contacts competing as is, and last, where faces remain, the whole
+// correction again with a wider collar.
 RepairLadder default_repair_ladder() {
   auto [early_separation, late_separation] = make_contact_separation_stages();
   RepairLadder ladder;
@@ -67,8 +69,10 @@ RepairLadder default_repair_ladder() {
   ladder.push_back(make_fallback_stage());
   add_local_repairs(ladder, false);
   ladder.push_back(std::move(early_separation));
-  ladder.push_back(make_local_correction_stage());
-  add_local_repairs(ladder, true);
+  for (int place = 0; place < 2; ++place) {
+    ladder.push_back(make_local_correction_stage());
+    add_local_repairs(ladder, true);
+  }
   ladder.push_back(make_halfway_stage());
   add_local_repairs(ladder, true);
   ladder.push_back(make_final_reproduction_stage());

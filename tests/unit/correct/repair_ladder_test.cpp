@@ -21,9 +21,11 @@ namespace {
 const std::vector<std::string> kLocalRepairs = {"fallback", "rollback", "reference-zones", "relaxation",
                                                 "contact-push"};
 const std::vector<std::string> kLadderOrder = [] {
-  std::vector<std::string> order{"field", "fallback", "rollback", "reference-zones", "contact-separation",
-                                 "local-correction"};
-  order.insert(order.end(), kLocalRepairs.begin(), kLocalRepairs.end());
+  std::vector<std::string> order{"field", "fallback", "rollback", "reference-zones", "contact-separation"};
+  for (int place = 0; place < 2; ++place) {
+    order.push_back("local-correction");
+    order.insert(order.end(), kLocalRepairs.begin(), kLocalRepairs.end());
+  }
   order.push_back("halfway");
   order.insert(order.end(), kLocalRepairs.begin(), kLocalRepairs.end());
   for (const char* name : {"final-reproduction", "stretch-relief", "contact-separation", "wider-collar"}) {
