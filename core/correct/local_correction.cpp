@@ -42,8 +42,8 @@ class LocalCorrectionStage final : public RepairStage {
 
   // Not where the candidate still has at least half of the target's new faces: the pose is then
   // entangled throughout, the regions around its faces join into large parts of the pose whose own
-  // corrections cost the most and free the least, and what follows (the relaxation and the push,
-  // the legs through the halfway pose, the wider collar) frees such poses on its own.
+  // corrections cost the most and free the least; the relaxation and the push free more of such a
+  // pose, and the ladder's second place for this stage corrects what they leave.
   bool wanted(const Candidate& current, const CorrectionContext& context) const override {
     return RepairStage::wanted(current, context) && !context.entangled_throughout(current.new_face_count());
   }
