@@ -85,7 +85,8 @@ RepairLadder default_repair_ladder() {
 Candidate run_repair_ladder(const RepairLadder& ladder, Candidate start, CorrectionContext& context,
                             std::vector<StageReport>& reports) {
   Candidate current = std::move(start);
-  // The candidate's version (proposals kept so far) and, per repair, the version it last ran on.
+  // The candidate's version (proposals kept so far) and, per repair, the version it last ran on or
+  // made: a stage's own proposal is the candidate it would start from again.
   int version = 0;
   std::map<std::string, int> ran_on;
   for (const std::unique_ptr<RepairStage>& stage : ladder) {
@@ -111,6 +112,7 @@ Candidate run_repair_ladder(const RepairLadder& ladder, Candidate start, Correct
         current = std::move(*proposal);
         report.kept = true;
         ++version;
+        ran_on[repair] = version;
       }
       if (!report.kept) report.note.clear();
       report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();

@@ -157,7 +157,7 @@ struct StageReport {
   std::string name;             ///< as in repair_stages()
   bool ran = false;
   /// Why it did not run: "disabled", "nested run", "nothing to repair" or "unchanged since it ran" (a
-  /// stage of its repair already ran on the same candidate).
+  /// stage of its repair already ran on the same candidate or made it).
   std::string skipped;
   bool kept = false;            ///< its pose replaced the candidate: fewer new faces, or as many and nearer the target
   int new_faces_before = 0;     ///< new intersecting faces of the candidate it started from

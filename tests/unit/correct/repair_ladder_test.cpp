@@ -111,9 +111,9 @@ TEST_F(RepairLadderTest, RunsStagesInOrderAndKeepsOnlyBetterProposals) {
   EXPECT_EQ(end.pose(), arm_->pose(0));
 }
 
-// A stage does not run again on the candidate a stage of its repair left unchanged; it does once
-// another stage changed the candidate.
-TEST_F(RepairLadderTest, SkipsARepairOnTheCandidateItLeftUnchanged) {
+// A stage does not run again on the candidate a stage of its repair left unchanged, nor on the one
+// such a stage made; it does once another stage changed the candidate.
+TEST_F(RepairLadderTest, SkipsARepairOnTheCandidateItLeftUnchangedOrMade) {
   testing::StageFixture fixture(arm_->pose(0), arm_->pose(1), arm_->faces(), CorrectionOptions{});
   std::vector<std::string> log;
   RepairLadder ladder;
@@ -121,23 +121,30 @@ TEST_F(RepairLadderTest, SkipsARepairOnTheCandidateItLeftUnchanged) {
     // Proposes the entangled target: never better than the candidate it starts from.
     return std::make_unique<RecordingStage>("repeat", kEveryScope, log, true, arm_->pose(1));
   };
+  const auto change = [&] {
+    // Proposes the clean rest pose: better than the entangled target.
+    return std::make_unique<RecordingStage>("change", kEveryScope, log, true, arm_->pose(0));
+  };
   ladder.push_back(repeat());
   ladder.push_back(repeat());
-  ladder.push_back(std::make_unique<RecordingStage>("change", kEveryScope, log, false, arm_->pose(0)));
+  ladder.push_back(change());
+  ladder.push_back(change());
   ladder.push_back(repeat());
   ladder.push_back(repeat());
   std::vector<StageReport> reports;
   run_repair_ladder(ladder, fixture.candidate(arm_->pose(1)), fixture.context, reports);
 
   EXPECT_EQ(log, (std::vector<std::string>{"repeat", "change", "repeat"}));
-  ASSERT_EQ(reports.size(), 5u);
+  ASSERT_EQ(reports.size(), 6u);
   EXPECT_TRUE(reports[0].ran);
   EXPECT_FALSE(reports[0].kept);
   EXPECT_FALSE(reports[1].ran);
   EXPECT_EQ(reports[1].skipped, "unchanged since it ran");
   EXPECT_TRUE(reports[2].kept);
-  EXPECT_TRUE(reports[3].ran);
-  EXPECT_EQ(reports[4].skipped, "unchanged since it ran");
+  EXPECT_FALSE(reports[3].ran);
+  EXPECT_EQ(reports[3].skipped, "unchanged since it ran");
+  EXPECT_TRUE(reports[4].ran);
+  EXPECT_EQ(reports[5].skipped, "unchanged since it ran");
 }
 
 // The separation of the target's contacts keeps its one outcome by two rules (early: only when
