@@ -42,11 +42,14 @@ class HalfwayStage final : public RepairStage {
     CorrectionReport first_leg;
     const Eigen::MatrixX3d halfway_corrected = correct_in_scope(context.reference, halfway, context.faces, context.device,
                                                                 context.options, CorrectionScope::leg, &first_leg);
+    CorrectionReport second_leg;
     const Eigen::MatrixX3d corrected =
         correct_in_scope(halfway_corrected, context.target, context.faces, context.device, context.options,
-                         CorrectionScope::leg, nullptr, {}, &context.reference_intersecting);
+                         CorrectionScope::leg, &second_leg, {}, &context.reference_intersecting);
     report.details = {{"halfway_new_faces", first_leg.result.new_intersecting_faces},
-                      {"halfway_pose_seconds", pose_seconds}};
+                      {"halfway_pose_seconds", pose_seconds},
+                      {"first_leg_seconds", first_leg.seconds},
+                      {"second_leg_seconds", second_leg.seconds}};
     report.note = "corrected in two legs through the pose halfway in edge space (" +
                   std::to_string(first_leg.result.new_intersecting_faces) +
                   " new intersecting faces there after its correction)";

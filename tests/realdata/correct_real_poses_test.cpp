@@ -67,6 +67,18 @@ void expect_stage_chain(const CorrectionReport& report, const std::string& freed
   if (!freed_by.empty()) {
     EXPECT_EQ(freeing->name, freed_by) << "stages:" << stage_list(report);
   }
+  if (freeing->name == "halfway") {
+    // The halfway pose's and each leg's own times, each taken and all within the stage's.
+    double parts = 0.0;
+    for (const std::string key : {"halfway_pose_seconds", "first_leg_seconds", "second_leg_seconds"}) {
+      const auto detail = std::find_if(freeing->details.begin(), freeing->details.end(),
+                                       [&](const auto& entry) { return entry.first == key; });
+      ASSERT_NE(detail, freeing->details.end()) << key;
+      EXPECT_GT(detail->second, 0.0) << key;
+      parts += detail->second;
+    }
+    EXPECT_LE(parts, freeing->seconds);
+  }
 }
 
 void expect_corrected(const PosePair& pair, const CorrectionOptions& options) {
