@@ -35,17 +35,21 @@ constexpr int kFewestFaces = 16;
 // nearer the target.
 class LocalCorrectionStage final : public RepairStage {
  public:
-  LocalCorrectionStage()
+  explicit LocalCorrectionStage(EntangledPoses entangled)
       : RepairStage({"local-correction", "correct each region that still intersects again, as a mesh of its own"},
                     scope_bit(CorrectionScope::whole_pose) | scope_bit(CorrectionScope::leg) |
-                        scope_bit(CorrectionScope::stretch_retry)) {}
+                        scope_bit(CorrectionScope::stretch_retry)),
+        entangled_(entangled) {}
 
-  // Not where the candidate still has at least half of the target's new faces: the pose is then
-  // entangled throughout, the regions around its faces join into large parts of the pose whose own
-  // corrections cost the most and free the least; the relaxation and the push free more of such a
-  // pose, and the ladder's second place for this stage corrects what they leave.
+  // The first place leaves a candidate that still has at least half of the target's new faces to
+  // the stages after it: the pose is then entangled throughout, the regions around its faces join
+  // into large parts of the pose whose own corrections cost the most and free the least, and the
+  // relaxation and the push free more of such a pose. The later place corrects whatever they leave,
+  // entangled or not: where they free nothing, the regions of the target's own entanglement,
+  // corrected each on its own, are what is left to try before the legs through the halfway pose.
   bool wanted(const Candidate& current, const CorrectionContext& context) const override {
-    return RepairStage::wanted(current, context) && !context.entangled_throughout(current.new_face_count());
+    return RepairStage::wanted(current, context) &&
+           (entangled_ == EntangledPoses::corrected || !context.entangled_throughout(current.new_face_count()));
   }
 
   std::optional<Candidate> run(const Candidate& current, CorrectionContext& context, StageReport& report) override {
@@ -68,6 +72,9 @@ class LocalCorrectionStage final : public RepairStage {
                               (from_target ? "of the target corrected on their own, in place of the field's result"
                                            : "corrected again on their own"));
   }
+
+ private:
+  EntangledPoses entangled_;
 };
 
 }  // namespace
@@ -136,6 +143,8 @@ SweepOutcome correct_regions_locally(Candidate& candidate, const CorrectionConte
   return sweep_regions(candidate, context, sweep, correct);
 }
 
-std::unique_ptr<RepairStage> make_local_correction_stage() { return std::make_unique<LocalCorrectionStage>(); }
+std::unique_ptr<RepairStage> make_local_correction_stage(EntangledPoses entangled) {
+  return std::make_unique<LocalCorrectionStage>(entangled);
+}
 
 }  // namespace posekit::detail

@@ -69,8 +69,8 @@ RepairLadder default_repair_ladder() {
   ladder.push_back(make_fallback_stage());
   add_local_repairs(ladder, false);
   ladder.push_back(std::move(early_separation));
-  for (int place = 0; place < 2; ++place) {
-    ladder.push_back(make_local_correction_stage());
+  for (const EntangledPoses entangled : {EntangledPoses::left_to_later_stages, EntangledPoses::corrected}) {
+    ladder.push_back(make_local_correction_stage(entangled));
     add_local_repairs(ladder, true);
   }
   ladder.push_back(make_halfway_stage());

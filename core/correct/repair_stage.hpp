@@ -62,7 +62,10 @@ std::unique_ptr<RepairStage> make_field_stage();                // field_correct
 std::unique_ptr<RepairStage> make_fallback_stage();             // intersection_fallback.cpp
 std::unique_ptr<RepairStage> make_rollback_stage();             // time_rollback.cpp
 std::unique_ptr<RepairStage> make_reference_zones_stage();      // reference_zones.cpp
-std::unique_ptr<RepairStage> make_local_correction_stage();     // local_correction.cpp
+/// What a place of the local correction does with a candidate still entangled throughout
+/// (CorrectionContext::entangled_throughout): leaves it to the stages after it, or corrects it.
+enum class EntangledPoses { left_to_later_stages, corrected };
+std::unique_ptr<RepairStage> make_local_correction_stage(EntangledPoses entangled);  // local_correction.cpp
 std::unique_ptr<RepairStage> make_relaxation_stage();           // region_relaxation.cpp
 std::unique_ptr<RepairStage> make_halfway_stage();              // halfway_legs.cpp
 std::unique_ptr<RepairStage> make_final_reproduction_stage();   // target_reproduction.cpp

@@ -51,9 +51,9 @@ TEST(LocalCorrection, LeavesACleanResultAlone) {
 }
 
 // Where the candidate still has at least half of the target's new faces, the pose is entangled
-// throughout and the local correction leaves it to the stages after it, in every scope; where fewer
-// remain, it runs.
-TEST(LocalCorrection, LeavesAPoseEntangledThroughoutToTheStagesAfterIt) {
+// throughout: the local correction's first place leaves it to the stages after it, in every scope,
+// and its later place corrects it; where fewer remain, both run.
+TEST(LocalCorrection, FirstPlaceLeavesAPoseEntangledThroughoutToTheStagesAfterIt) {
   const TwoSheets sheets = two_sheets(25);
   const Eigen::MatrixX3d entangled = waved(dented(sheets, 0.4));
   testing::StageFixture fixture(waved(sheets.vertices), entangled, sheets.faces);
@@ -62,13 +62,17 @@ TEST(LocalCorrection, LeavesAPoseEntangledThroughoutToTheStagesAfterIt) {
   ASSERT_GT(as_target.new_face_count(), 0);
   ASSERT_GT(shallower.new_face_count(), 0);
   ASSERT_LE(2 * shallower.new_face_count(), fixture.context.target_new_faces);
-  const std::unique_ptr<RepairStage> stage = make_local_correction_stage();
+  const std::unique_ptr<RepairStage> first = make_local_correction_stage(EntangledPoses::left_to_later_stages);
+  const std::unique_ptr<RepairStage> later = make_local_correction_stage(EntangledPoses::corrected);
   for (const CorrectionScope scope :
        {CorrectionScope::whole_pose, CorrectionScope::leg, CorrectionScope::stretch_retry}) {
     fixture.context.scope = scope;
-    EXPECT_FALSE(stage->wanted(as_target, fixture.context));
-    EXPECT_TRUE(stage->wanted(shallower, fixture.context));
-    EXPECT_FALSE(stage->wanted(fixture.candidate(waved(sheets.vertices)), fixture.context));
+    EXPECT_FALSE(first->wanted(as_target, fixture.context));
+    EXPECT_TRUE(later->wanted(as_target, fixture.context));
+    for (const RepairStage* stage : {first.get(), later.get()}) {
+      EXPECT_TRUE(stage->wanted(shallower, fixture.context));
+      EXPECT_FALSE(stage->wanted(fixture.candidate(waved(sheets.vertices)), fixture.context));
+    }
   }
 }
 
