@@ -106,14 +106,13 @@ Candidate run_repair_ladder(const RepairLadder& ladder, Candidate start, Correct
       const auto begin = std::chrono::steady_clock::now();
       context.report_progress(report.name, 0.0);
       report.ran = true;
-      ran_on[repair] = version;
       std::optional<Candidate> proposal = stage->run(current, context, report);
       if (proposal && better(*proposal, current, context)) {
         current = std::move(*proposal);
         report.kept = true;
         ++version;
-        ran_on[repair] = version;
       }
+      ran_on[repair] = version;
       if (!report.kept) report.note.clear();
       report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
       context.report_progress(report.name, 1.0);
