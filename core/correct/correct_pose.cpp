@@ -111,7 +111,8 @@ Eigen::MatrixX3d correct_in_scope(const Eigen::Ref<const Eigen::MatrixX3d>& refe
                                   const Eigen::Ref<const Eigen::MatrixX3i>& faces, Device& device,
                                   const CorrectionOptions& options,
                                   CorrectionScope scope, CorrectionReport* report_out,
-                                  const CorrectionProgress& progress, const std::vector<int>* allowed) {
+                                  const CorrectionProgress& progress, const std::vector<int>* allowed,
+                                  std::shared_ptr<PairAnalysis> same_pair) {
   const auto start = std::chrono::steady_clock::now();
   check_options(options);
   if (reference.rows() != target.rows()) {
@@ -129,7 +130,9 @@ Eigen::MatrixX3d correct_in_scope(const Eigen::Ref<const Eigen::MatrixX3d>& refe
   report.device = device.info().backend + ": " + device.info().name;
 
   const auto normalization_start = std::chrono::steady_clock::now();
-  const UnitSphereNormalization normalization = shared_unit_sphere_normalization({reference, target});
+  // A pair lent with its analysis is in that analysis's frame already: the identity keeps it there.
+  const UnitSphereNormalization normalization =
+      same_pair ? UnitSphereNormalization{} : shared_unit_sphere_normalization({reference, target});
   const Eigen::MatrixX3d reference_n = normalization.apply(reference);
   const Eigen::MatrixX3d target_n = normalization.apply(target);
   // Nested runs name no vertex of the whole pose.
@@ -142,6 +145,7 @@ Eigen::MatrixX3d correct_in_scope(const Eigen::Ref<const Eigen::MatrixX3d>& refe
         new_intersecting_faces(faces_in_pairs(context.target_pairs), context.reference_intersecting).size());
   }
   context.field_report = &report.field;
+  if (same_pair) context.pair_analysis = std::move(same_pair);
   report.field.seconds.normalization =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - normalization_start).count();
 

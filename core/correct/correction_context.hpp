@@ -6,6 +6,7 @@
 #include "correct/path_lines.hpp"
 #include "correct/stretch_measure.hpp"
 #include "correct/vertex_classification.hpp"
+#include "correct/vertex_trajectories.hpp"
 
 #include <posekit/correct.hpp>
 #include <posekit/device.hpp>
@@ -14,6 +15,7 @@
 
 #include <Eigen/Core>
 
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -37,6 +39,17 @@ struct FieldOutcome {
   PathLines paths;              ///< the path lines every vertex took
 };
 
+/// What a correction computes from its pair of poses alone, whatever the collar: the field's key
+/// frames, the pairs that intersect in its tested poses and the vertex classification, and the
+/// halfway pose of the legs. Each is computed once, by the stage that first needs it, and lent to the
+/// run that corrects the same pair again in the same frame with a wider collar.
+struct PairAnalysis {
+  std::shared_ptr<const VertexTrajectories> trajectories;
+  std::vector<FacePairs> tested_pairs;  ///< per tested pose, the reference first and the target last
+  std::optional<VertexClassification> classification;
+  std::optional<Eigen::MatrixX3d> halfway;  ///< in the frame of the context that holds it
+};
+
 /// Holds views of the poses and faces it was made from, which must outlive it.
 struct CorrectionContext {
   Eigen::Ref<const Eigen::MatrixX3d> reference;  ///< unit-sphere frame
@@ -55,6 +68,8 @@ struct CorrectionContext {
   CorrectionProgress progress;
   FieldReport* field_report = nullptr;       ///< filled by the field correction
   std::optional<FieldOutcome> field;         ///< set by the field correction
+  /// Never null: the run's own, or the one a run of the same pair lent it (correct_in_scope).
+  std::shared_ptr<PairAnalysis> pair_analysis = std::make_shared<PairAnalysis>();
 
   int vertex_count() const { return static_cast<int>(reference.rows()); }
   /// Whether a candidate with `new_faces` new intersecting faces still has at least half of the

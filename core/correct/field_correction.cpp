@@ -189,6 +189,30 @@ RegionField fit_region(const std::vector<int>& region, const VertexClassificatio
   return out;
 }
 
+// The key frames, the pairs that intersect in the tested poses and the classification, into the
+// context's pair analysis, with their seconds in `report`.
+void analyze_pair(const CorrectionContext& context, FieldReport& report) {
+  const CorrectionOptions& options = context.options;
+  PairAnalysis& analysis = *context.pair_analysis;
+  Clock::time_point start = Clock::now();
+  context.report_progress("key frames", 0.0);
+  std::vector<Eigen::MatrixX3d> frames =
+      PoissonInterpolator(context.reference, context.target, context.faces).key_frames(options.key_frames);
+  frames.front() = context.reference;  // exact ends, not the solver's round-off
+  frames.back() = context.target;
+  report.seconds.key_frames = seconds_since(start);
+
+  start = Clock::now();
+  context.report_progress("classification", 0.0);
+  analysis.trajectories = std::make_shared<const VertexTrajectories>(std::move(frames));
+  const std::vector<Eigen::MatrixX3d> poses =
+      tested_poses(analysis.trajectories->frames(), *analysis.trajectories, options.intersection_substeps);
+  analysis.tested_pairs = intersecting_pairs(poses, context.faces, context.reference_pairs, context.target_pairs);
+  analysis.classification = classify_vertices(analysis.tested_pairs, context.faces, context.neighbours,
+                                              options.exclusion_rings, options.excluded_vertices);
+  report.seconds.classification = seconds_since(start);
+}
+
 class FieldStage final : public RepairStage {
  public:
   FieldStage()
@@ -205,31 +229,19 @@ class FieldStage final : public RepairStage {
     report.collar_rings = options.whole_mesh ? 0 : options.collar_rings;
     report.key_frames = options.key_frames;
 
-    Clock::time_point start = Clock::now();
-    context.report_progress("key frames", 0.0);
-    std::vector<Eigen::MatrixX3d> frames =
-        PoissonInterpolator(context.reference, context.target, context.faces).key_frames(options.key_frames);
-    frames.front() = context.reference;  // exact ends, not the solver's round-off
-    frames.back() = context.target;
-    report.seconds.key_frames = seconds_since(start);
-
-    start = Clock::now();
-    context.report_progress("classification", 0.0);
-    auto trajectories = std::make_shared<const VertexTrajectories>(std::move(frames));
-    const std::vector<Eigen::MatrixX3d> poses =
-        tested_poses(trajectories->frames(), *trajectories, options.intersection_substeps);
-    const std::vector<FacePairs> pairs = intersecting_pairs(poses, context.faces, context.reference_pairs, context.target_pairs);
-    VertexClassification classification =
-        classify_vertices(pairs, context.faces, context.neighbours, options.exclusion_rings, options.excluded_vertices);
-    report.tested_poses = static_cast<int>(poses.size());
+    PairAnalysis& analysis = *context.pair_analysis;
+    if (!analysis.classification) analyze_pair(context, report);
+    const VertexClassification& classification = *analysis.classification;
+    const std::vector<FacePairs>& pairs = analysis.tested_pairs;
+    const std::shared_ptr<const VertexTrajectories>& trajectories = analysis.trajectories;
+    report.tested_poses = static_cast<int>(pairs.size());
     report.excluded_vertices = classification.excluded;
     report.reference_intersecting_faces = static_cast<int>(classification.reference_intersecting.size());
     report.target_intersecting_faces = static_cast<int>(classification.target_intersecting.size());
     report.near_intersection_vertices = static_cast<int>(
         std::count(classification.near_intersections.begin(), classification.near_intersections.end(), 1));
-    report.seconds.classification = seconds_since(start);
 
-    start = Clock::now();
+    Clock::time_point start = Clock::now();
     const std::vector<std::vector<int>> regions =
         options.whole_mesh ? whole_mesh_region(context.vertex_count())
                            : regions_of_interest(classification, pairs, context.faces, context.neighbours,
@@ -292,7 +304,7 @@ class FieldStage final : public RepairStage {
                      {"constraints", report.constraints()},
                      {"region_vertices", report.region_vertices},
                      {"new_faces_after_integration", report.new_faces_after_integration}};
-    context.field = FieldOutcome{std::move(classification), integrated,
+    context.field = FieldOutcome{classification, integrated,
                                  PathLines(context.reference, trajectories, std::move(timed), std::move(field_of_vertex),
                                            context.device, options.integration)};
     Candidate corrected = std::move(integrated_candidate);

@@ -2,7 +2,8 @@
 // space (edge lengths and dihedral angles interpolated), each leg with its own key frames and
 // field: the reference to the halfway pose, then the corrected halfway pose to the target. On the
 // most entangled poses the two shorter motions free what the whole way could not; the halfway pose
-// of the gradient-space key frames did worse than the edge-space one (docs/correct.md).
+// of the gradient-space key frames did worse than the edge-space one (docs/correct.md). The pose
+// depends on the pair alone: a run of the same pair with a wider collar borrows it (0 seconds).
 #include "correct/nested_correction.hpp"
 #include "correct/repair_stage.hpp"
 
@@ -10,6 +11,7 @@
 #include <posekit/interpolate.hpp>
 #include <posekit/mesh.hpp>
 
+#include <optional>
 #include <utility>
 
 namespace posekit::detail {
@@ -22,25 +24,27 @@ class HalfwayStage final : public RepairStage {
                     scope_bit(CorrectionScope::whole_pose)) {}
 
   std::optional<Candidate> run(const Candidate& current, CorrectionContext& context, StageReport& report) override {
-    Eigen::MatrixX3d halfway;
+    std::optional<Eigen::MatrixX3d>& halfway = context.pair_analysis->halfway;
     double pose_seconds = 0.0;  // the interpolator's own figures: its preparation and the one pose
-    try {
-      PoseSet ends(context.faces);
-      ends.add_pose(context.reference);
-      ends.add_pose(context.target);
-      InterpolationOptions edge_space;
-      edge_space.method = InterpolationMethod::edge;
-      PoseInterpolator interpolator(std::move(ends), edge_space);
-      InterpolationStepReport step;
-      halfway = interpolator.interpolate(two_pose_weights(0.5), &step);
-      pose_seconds = interpolator.precomputation_seconds().total + step.seconds.total;
-    } catch (const DeviceError&) {
-      throw;
-    } catch (const Error&) {
-      return std::nullopt;  // no halfway pose for this mesh (edge space needs a manifold surface)
+    if (!halfway) {
+      try {
+        PoseSet ends(context.faces);
+        ends.add_pose(context.reference);
+        ends.add_pose(context.target);
+        InterpolationOptions edge_space;
+        edge_space.method = InterpolationMethod::edge;
+        PoseInterpolator interpolator(std::move(ends), edge_space);
+        InterpolationStepReport step;
+        halfway = interpolator.interpolate(two_pose_weights(0.5), &step);
+        pose_seconds = interpolator.precomputation_seconds().total + step.seconds.total;
+      } catch (const DeviceError&) {
+        throw;
+      } catch (const Error&) {
+        return std::nullopt;  // no halfway pose for this mesh (edge space needs a manifold surface)
+      }
     }
     CorrectionReport first_leg;
-    const Eigen::MatrixX3d halfway_corrected = correct_in_scope(context.reference, halfway, context.faces, context.device,
+    const Eigen::MatrixX3d halfway_corrected = correct_in_scope(context.reference, *halfway, context.faces, context.device,
                                                                 context.options, CorrectionScope::leg, &first_leg);
     CorrectionReport second_leg;
     const Eigen::MatrixX3d corrected =

@@ -7,18 +7,23 @@
 
 #include <posekit/correct.hpp>
 
+#include <memory>
+
 namespace posekit::detail {
 
 /// Corrects `target` against `reference` (#V by 3 each, in any frame) of the #F by 3 `faces` as
 /// correct_pose() does, with the stages of `scope` only. The user's excluded vertices name vertices
 /// of the whole pose and count only in CorrectionScope::whole_pose. `allowed` (sorted), when given,
 /// replaces the reference's intersecting faces as those that may intersect: a leg that starts from
-/// a corrected pose still owes the whole pose's reference what that pose left.
+/// a corrected pose still owes the whole pose's reference what that pose left. `same_pair`, when given,
+/// is the analysis of a run of these same two poses, which are then in its frame already (the wider
+/// collar's run): they are not normalized again, and what the analysis holds is not computed again.
 Eigen::MatrixX3d correct_in_scope(const Eigen::Ref<const Eigen::MatrixX3d>& reference,
                                   const Eigen::Ref<const Eigen::MatrixX3d>& target,
                                   const Eigen::Ref<const Eigen::MatrixX3i>& faces, Device& device,
                                   const CorrectionOptions& options,
                                   CorrectionScope scope, CorrectionReport* report = nullptr,
-                                  const CorrectionProgress& progress = {}, const std::vector<int>* allowed = nullptr);
+                                  const CorrectionProgress& progress = {}, const std::vector<int>* allowed = nullptr,
+                                  std::shared_ptr<PairAnalysis> same_pair = nullptr);
 
 }  // namespace posekit::detail

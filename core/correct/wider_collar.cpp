@@ -39,8 +39,10 @@ class WiderCollarStage final : public RepairStage {
     // which free the most entangled poses at the cost of two more corrections, are left out there.
     const CorrectionScope scope =
         current.new_face_count() == 0 ? CorrectionScope::stretch_retry : CorrectionScope::whole_pose;
-    const Eigen::MatrixX3d corrected =
-        correct_in_scope(context.reference, context.target, context.faces, context.device, wider, scope);
+    // The same pair in the same frame: the run borrows what depends on the pair alone.
+    const Eigen::MatrixX3d corrected = correct_in_scope(context.reference, context.target, context.faces,
+                                                        context.device, wider, scope, nullptr, {}, nullptr,
+                                                        context.pair_analysis);
     // The proposal's own count: the nested run need not measure its result a second time.
     Candidate proposal = whole_pose_proposal(current, corrected, report);
     const int new_faces = proposal.new_face_count();

@@ -1,6 +1,7 @@
 // The wider-collar stage: the whole correction again with a collar of 8 rings, offered only where
 // the options give a narrower one and fit per region of interest, and wanted where faces remain or
 // the surface tore.
+#include "correct/nested_correction.hpp"
 #include "correct/repair_stage.hpp"
 
 #include "bent_arm.hpp"
@@ -11,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <memory>
 #include <string>
 
 namespace posekit::detail {
@@ -77,6 +79,40 @@ TEST(WiderCollar, CorrectsTheWholePoseAgain) {
   EXPECT_EQ(report.regions, 1);
   EXPECT_GT(report.vertices, 0);
   EXPECT_FALSE(report.note.empty());
+}
+
+// The wider collar's run corrects the same pair in the same frame: it borrows the key frames, the
+// tested pairs and the classification the field stage computed, and gives what it would give
+// computing them itself.
+TEST(WiderCollar, ItsRunBorrowsWhatDependsOnThePairAlone) {
+  const PoseSet& arm = posekit::testing::bent_arm(16, 150.0);
+  testing::StageFixture fixture(arm.pose(0), arm.pose(1), arm.faces());
+  FieldReport field_report;
+  fixture.context.field_report = &field_report;
+  StageReport field_stage;
+  ASSERT_TRUE(make_field_stage()->run(fixture.candidate(arm.pose(1)), fixture.context, field_stage).has_value());
+  const std::shared_ptr<PairAnalysis> analysis = fixture.context.pair_analysis;
+  ASSERT_TRUE(analysis->classification.has_value());
+  ASSERT_NE(analysis->trajectories, nullptr);
+
+  CorrectionOptions wider = fixture.options;
+  wider.collar_rings = 8;
+  const auto run = [&](std::shared_ptr<PairAnalysis> lent, CorrectionReport& report) {
+    return correct_in_scope(fixture.reference, fixture.target, fixture.faces, *fixture.device, wider,
+                            CorrectionScope::whole_pose, &report, {}, nullptr, std::move(lent));
+  };
+  CorrectionReport borrowed;
+  CorrectionReport computed;
+  const Eigen::MatrixX3d with_analysis = run(analysis, borrowed);
+  const Eigen::MatrixX3d without = run(std::make_shared<PairAnalysis>(), computed);
+  EXPECT_EQ(borrowed.field.seconds.key_frames, 0.0);
+  EXPECT_EQ(borrowed.field.seconds.classification, 0.0);
+  EXPECT_GT(computed.field.seconds.key_frames, 0.0);
+  EXPECT_GT(computed.field.seconds.classification, 0.0);
+  EXPECT_EQ(borrowed.field.tested_poses, computed.field.tested_poses);
+  EXPECT_EQ(borrowed.field.near_intersection_vertices, computed.field.near_intersection_vertices);
+  EXPECT_TRUE(with_analysis == without);
+  EXPECT_EQ(borrowed.result.new_intersecting_faces, 0);
 }
 
 }  // namespace
