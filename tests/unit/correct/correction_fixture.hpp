@@ -7,7 +7,11 @@
 
 #include <posekit/cpu_device.hpp>
 
+#include <gtest/gtest.h>
+
+#include <algorithm>
 #include <memory>
+#include <string>
 
 namespace posekit::detail::testing {
 
@@ -33,5 +37,13 @@ struct StageFixture {
   std::unique_ptr<Device> device;
   CorrectionContext context;
 };
+
+/// The stage's own figure `name` from its report's details; a failure and -1 where it is missing.
+inline double stage_detail(const StageReport& report, const std::string& name) {
+  const auto found = std::find_if(report.details.begin(), report.details.end(),
+                                  [&](const auto& entry) { return entry.first == name; });
+  EXPECT_NE(found, report.details.end()) << name;
+  return found == report.details.end() ? -1.0 : found->second;
+}
 
 }  // namespace posekit::detail::testing

@@ -7,18 +7,9 @@
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
-#include <string>
 
 namespace posekit::detail {
 namespace {
-
-double detail_of(const StageReport& report, const std::string& name) {
-  const auto found = std::find_if(report.details.begin(), report.details.end(),
-                                  [&](const auto& entry) { return entry.first == name; });
-  EXPECT_NE(found, report.details.end()) << name;
-  return found == report.details.end() ? -1.0 : found->second;
-}
 
 // The first run computes the halfway pose and keeps it in the pair analysis; a second run of the
 // same analysis (the wider collar's) borrows it, spends nothing on it and proposes the same pose.
@@ -35,12 +26,12 @@ TEST(HalfwayLegs, ComputesTheHalfwayPoseOncePerPair) {
   ASSERT_TRUE(computed.has_value());
   ASSERT_TRUE(fixture.context.pair_analysis->halfway.has_value());
   EXPECT_EQ(fixture.context.pair_analysis->halfway->rows(), arm.pose(0).rows());
-  EXPECT_GT(detail_of(first, "halfway_pose_seconds"), 0.0);
+  EXPECT_GT(testing::stage_detail(first, "halfway_pose_seconds"), 0.0);
 
   StageReport second;
   const std::optional<Candidate> borrowed = stage->run(entangled, fixture.context, second);
   ASSERT_TRUE(borrowed.has_value());
-  EXPECT_EQ(detail_of(second, "halfway_pose_seconds"), 0.0);
+  EXPECT_EQ(testing::stage_detail(second, "halfway_pose_seconds"), 0.0);
   EXPECT_TRUE(borrowed->pose() == computed->pose());
   EXPECT_EQ(borrowed->new_face_count(), computed->new_face_count());
 }

@@ -11,19 +11,10 @@
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <memory>
-#include <string>
 
 namespace posekit::detail {
 namespace {
-
-double detail_of(const StageReport& report, const std::string& name) {
-  const auto found = std::find_if(report.details.begin(), report.details.end(),
-                                  [&](const auto& entry) { return entry.first == name; });
-  EXPECT_NE(found, report.details.end()) << name;
-  return found == report.details.end() ? -1.0 : found->second;
-}
 
 TEST(WiderCollar, EnabledOnlyForANarrowerCollarOfRegions) {
   const std::unique_ptr<RepairStage> stage = make_wider_collar_stage();
@@ -74,8 +65,8 @@ TEST(WiderCollar, CorrectsTheWholePoseAgain) {
   const std::optional<Candidate> proposal = stage->run(entangled, fixture.context, report);
   ASSERT_TRUE(proposal.has_value());
   EXPECT_EQ(proposal->new_face_count(), 0);
-  EXPECT_EQ(detail_of(report, "collar_rings"), 8.0);
-  EXPECT_EQ(detail_of(report, "new_faces"), 0.0);
+  EXPECT_EQ(testing::stage_detail(report, "collar_rings"), 8.0);
+  EXPECT_EQ(testing::stage_detail(report, "new_faces"), 0.0);
   EXPECT_EQ(report.regions, 1);
   EXPECT_GT(report.vertices, 0);
   EXPECT_FALSE(report.note.empty());
