@@ -29,10 +29,15 @@ constexpr double kLargestRegionFraction = 0.5;
 // A region of fewer faces gives the field too little to fit.
 constexpr int kFewestFaces = 16;
 
-// Local correction of the candidate and, where that leaves new faces, of the target itself: where
-// the target is entangled over much of the pose, the field leaves most of it off the target, and
-// correcting only the target's own entangled regions, each on its own, can free the pose and stay
-// nearer the target.
+// The share of its new faces the candidate's own pass frees at which the target's pass is not tried:
+// the field's result is then nearly right, and the target's regions, which start from all of the
+// target's entanglement, cost the most there and beat it on no pose measured (docs/correct.md).
+constexpr double kFreedShareWithoutTargetPass = 0.75;
+
+// Local correction of the candidate and, where that leaves most of its new faces, of the target
+// itself: where the target is entangled over much of the pose, the field leaves most of it off the
+// target, and correcting only the target's own entangled regions, each on its own, can free the
+// pose and stay nearer the target.
 class LocalCorrectionStage final : public RepairStage {
  public:
   explicit LocalCorrectionStage(EntangledPoses entangled)
@@ -56,7 +61,9 @@ class LocalCorrectionStage final : public RepairStage {
     Candidate corrected = current;
     SweepOutcome outcome = correct_regions_locally(corrected, context);
     bool from_target = false;
-    if (corrected.new_face_count() > 0 && current.pose() != context.target) {
+    const bool target_tried =
+        target_pass_wanted(current.new_face_count(), corrected.new_face_count()) && current.pose() != context.target;
+    if (target_tried) {
       Candidate target(context.target, context.faces, context.reference_intersecting, context.target_pairs);
       const SweepOutcome target_outcome = correct_regions_locally(target, context);
       if (better(target, corrected, context)) {
@@ -65,7 +72,7 @@ class LocalCorrectionStage final : public RepairStage {
         from_target = true;
       }
     }
-    report.details = {{"from_target", from_target ? 1.0 : 0.0}};
+    report.details = {{"from_target", from_target ? 1.0 : 0.0}, {"target_tried", target_tried ? 1.0 : 0.0}};
     return sweep_proposal(std::move(corrected), outcome, report,
                           std::to_string(outcome.regions) + " region(s) (" + std::to_string(outcome.vertices) +
                               " vertices) " +
@@ -141,6 +148,12 @@ SweepOutcome correct_regions_locally(Candidate& candidate, const CorrectionConte
     return best;
   };
   return sweep_regions(candidate, context, sweep, correct);
+}
+
+bool target_pass_wanted(int faces_before, int faces_left) {
+  if (faces_left <= 0 || faces_before <= 0) return false;
+  const double freed_share = 1.0 - static_cast<double>(faces_left) / static_cast<double>(faces_before);
+  return freed_share < kFreedShareWithoutTargetPass;
 }
 
 std::unique_ptr<RepairStage> make_local_correction_stage(EntangledPoses entangled) {

@@ -19,4 +19,9 @@ namespace posekit::detail {
 /// the passes repeat, up to three times, while they help.
 SweepOutcome correct_regions_locally(Candidate& candidate, const CorrectionContext& context);
 
+/// Whether the local correction also corrects the target's own regions, after the candidate's pass
+/// took the candidate from `faces_before` new faces to `faces_left`: only where faces are left and
+/// that pass freed under three quarters of them.
+bool target_pass_wanted(int faces_before, int faces_left);
+
 }  // namespace posekit::detail

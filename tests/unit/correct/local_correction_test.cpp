@@ -76,5 +76,18 @@ TEST(LocalCorrection, FirstPlaceLeavesAPoseEntangledThroughoutToTheStagesAfterIt
   }
 }
 
+// The target's own regions are tried only where the candidate's pass left faces and freed under
+// three quarters of them.
+TEST(LocalCorrection, TriesTheTargetOnlyWhereTheCandidatesPassFreedLittle) {
+  EXPECT_TRUE(target_pass_wanted(80, 74));
+  EXPECT_TRUE(target_pass_wanted(441, 441));
+  EXPECT_TRUE(target_pass_wanted(19, 9));
+  EXPECT_TRUE(target_pass_wanted(4, 2));
+  EXPECT_FALSE(target_pass_wanted(4, 1));
+  EXPECT_FALSE(target_pass_wanted(209, 3));
+  EXPECT_FALSE(target_pass_wanted(31, 0));
+  EXPECT_FALSE(target_pass_wanted(0, 0));
+}
+
 }  // namespace
 }  // namespace posekit::detail
