@@ -34,10 +34,10 @@ constexpr int kFewestFaces = 16;
 // target's entanglement, cost the most there and beat it on no pose measured (docs/correct.md).
 constexpr double kFreedShareWithoutTargetPass = 0.75;
 
-// Local correction of the candidate and, where that leaves most of its new faces, of the target
-// itself: where the target is entangled over much of the pose, the field leaves most of it off the
-// target, and correcting only the target's own entangled regions, each on its own, can free the
-// pose and stay nearer the target.
+// Local correction of the candidate and, where that leaves over a quarter of its new faces, of the
+// target itself: where the target is entangled over much of the pose, the field leaves most of it
+// off the target, and correcting only the target's own entangled regions, each on its own, can free
+// the pose and stay nearer the target.
 class LocalCorrectionStage final : public RepairStage {
  public:
   explicit LocalCorrectionStage(EntangledPoses entangled)
