@@ -72,8 +72,8 @@ ResultReport measure_result(const Eigen::Ref<const Eigen::MatrixX3d>& result,
   out.changed_vertices = static_cast<int>((difference.rowwise().squaredNorm().array() > 0.0).count());
   // The same over the vertices near intersections alone: how far the correction moved them.
   std::vector<Eigen::Index> near_rows;
-  if (context.field) {
-    const std::vector<char>& near = context.field->classification.near_intersections;
+  if (context.pair_analysis->classification) {
+    const std::vector<char>& near = context.pair_analysis->classification->near_intersections;
     for (size_t v = 0; v < near.size(); ++v) {
       if (near[v]) near_rows.push_back(static_cast<Eigen::Index>(v));
     }
@@ -93,12 +93,19 @@ CorrectionContext make_context(const Eigen::Ref<const Eigen::MatrixX3d>& referen
                                const Eigen::Ref<const Eigen::MatrixX3d>& target,
                                const Eigen::Ref<const Eigen::MatrixX3i>& faces, Device& device,
                                const CorrectionOptions& options,
-                               CorrectionScope scope, const CorrectionProgress& progress) {
+                               CorrectionScope scope, const CorrectionProgress& progress,
+                               std::shared_ptr<PairAnalysis> same_pair) {
   CorrectionContext context{reference, target,  faces, device, options, scope, {}, {}, {}, {}, 0,
                             0.0,       StretchMeasure(reference, target, faces), progress, nullptr, {}};
   context.neighbours = vertex_neighbours(faces, static_cast<int>(reference.rows()));
-  context.reference_pairs = self_intersecting_face_pairs(reference, faces);
-  context.target_pairs = self_intersecting_face_pairs(target, faces);
+  if (same_pair && !same_pair->tested_pairs.empty()) {
+    context.reference_pairs = same_pair->tested_pairs.front();
+    context.target_pairs = same_pair->tested_pairs.back();
+  } else {
+    context.reference_pairs = self_intersecting_face_pairs(reference, faces);
+    context.target_pairs = self_intersecting_face_pairs(target, faces);
+  }
+  if (same_pair) context.pair_analysis = std::move(same_pair);
   context.reference_intersecting = faces_in_pairs(context.reference_pairs);
   context.target_new_faces = static_cast<int>(
       new_intersecting_faces(faces_in_pairs(context.target_pairs), context.reference_intersecting).size());
@@ -138,14 +145,13 @@ Eigen::MatrixX3d correct_in_scope(const Eigen::Ref<const Eigen::MatrixX3d>& refe
   // Nested runs name no vertex of the whole pose.
   CorrectionOptions scoped = options;
   if (scope != CorrectionScope::whole_pose && scope != CorrectionScope::stretch_retry) scoped.excluded_vertices.clear();
-  CorrectionContext context = make_context(reference_n, target_n, faces, device, scoped, scope, progress);
+  CorrectionContext context = make_context(reference_n, target_n, faces, device, scoped, scope, progress, same_pair);
   if (allowed != nullptr) {
     context.reference_intersecting = *allowed;
     context.target_new_faces = static_cast<int>(
         new_intersecting_faces(faces_in_pairs(context.target_pairs), context.reference_intersecting).size());
   }
   context.field_report = &report.field;
-  if (same_pair) context.pair_analysis = std::move(same_pair);
   report.field.seconds.normalization =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - normalization_start).count();
 

@@ -32,9 +32,9 @@ using ScopeSet = unsigned;
 constexpr ScopeSet kEveryScope = 15;
 constexpr ScopeSet scope_bit(CorrectionScope scope) { return static_cast<ScopeSet>(scope); }
 
-/// The field correction's outcome, which later stages build on.
+/// The field correction's outcome, which later stages build on (its classification is the pair
+/// analysis's).
 struct FieldOutcome {
-  VertexClassification classification;
   Eigen::MatrixX3d integrated;  ///< the field's end positions in its regions, the target elsewhere
   PathLines paths;              ///< the path lines every vertex took
 };
@@ -68,7 +68,7 @@ struct CorrectionContext {
   CorrectionProgress progress;
   FieldReport* field_report = nullptr;       ///< filled by the field correction
   std::optional<FieldOutcome> field;         ///< set by the field correction
-  /// Never null: the run's own, or the one a run of the same pair lent it (correct_in_scope).
+  /// Never null: the run's own, or the one a run of the same pair lent it (make_context).
   std::shared_ptr<PairAnalysis> pair_analysis = std::make_shared<PairAnalysis>();
 
   int vertex_count() const { return static_cast<int>(reference.rows()); }
@@ -80,11 +80,14 @@ struct CorrectionContext {
   }
 };
 
-/// Builds the context: adjacency, the two poses' intersecting pairs and the diagonal.
+/// Builds the context: adjacency, the two poses' intersecting pairs and the diagonal. `same_pair`,
+/// when given, is the analysis of a run of the same two poses in the same frame: the context holds
+/// it, and takes the two poses' pairs from its tested poses where it has them.
 CorrectionContext make_context(const Eigen::Ref<const Eigen::MatrixX3d>& reference,
                                const Eigen::Ref<const Eigen::MatrixX3d>& target,
                                const Eigen::Ref<const Eigen::MatrixX3i>& faces, Device& device,
                                const CorrectionOptions& options,
-                               CorrectionScope scope, const CorrectionProgress& progress);
+                               CorrectionScope scope, const CorrectionProgress& progress,
+                               std::shared_ptr<PairAnalysis> same_pair = nullptr);
 
 }  // namespace posekit::detail

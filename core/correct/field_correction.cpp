@@ -304,7 +304,7 @@ class FieldStage final : public RepairStage {
                      {"constraints", report.constraints()},
                      {"region_vertices", report.region_vertices},
                      {"new_faces_after_integration", report.new_faces_after_integration}};
-    context.field = FieldOutcome{classification, integrated,
+    context.field = FieldOutcome{integrated,
                                  PathLines(context.reference, trajectories, std::move(timed), std::move(field_of_vertex),
                                            context.device, options.integration)};
     Candidate corrected = std::move(integrated_candidate);

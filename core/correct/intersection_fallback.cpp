@@ -68,7 +68,7 @@ class FallbackStage final : public RepairStage {
 
   std::optional<Candidate> run(const Candidate& current, CorrectionContext& context, StageReport& report) override {
     Candidate restored = current;
-    const FallbackOutcome outcome = restore_target_regions(restored, context, context.field->classification.in_transit,
+    const FallbackOutcome outcome = restore_target_regions(restored, context, context.pair_analysis->classification->in_transit,
                                                            kFallbackDeviation * context.diagonal);
     report.details = {{"global_regions", outcome.global_regions}, {"smoothed_regions", outcome.smoothed_regions}};
     return sweep_proposal(
