@@ -45,7 +45,8 @@ class BlockSparseMatrix3 {
 
  private:
   Eigen::SparseMatrix<double> matrix_;
-  std::vector<std::vector<int>> column_blocks_;  // per block column: block rows, ascending
+  std::vector<int> column_start_;  // per block column: where its block rows start in block_rows_
+  std::vector<int> block_rows_;    // per block column: block rows, ascending
   std::vector<Slot> slot_of_diagonal_;
 };
 

@@ -113,9 +113,11 @@ void EdgeSpaceReconstruction::prepare_gauss_newton() {
   if (gauss_newton_ready_) return;
   // Normal equations: blocks for edges and for the four corners of every hinge.
   std::vector<std::pair<int, int>> vertex_pairs;
+  vertex_pairs.reserve(static_cast<size_t>(patch_.edge_count()) + patch_.hinges.size());
   for (int e = 0; e < patch_.edge_count(); ++e) vertex_pairs.emplace_back(patch_.edges(e, 0), patch_.edges(e, 1));
   for (const Hinge& h : patch_.hinges) vertex_pairs.emplace_back(h.c, h.d);
   normal_matrix_ = BlockSparseMatrix3(patch_.vertex_count(), vertex_pairs);
+  edge_slots_.reserve(2 * static_cast<size_t>(patch_.edge_count()));
   for (int e = 0; e < patch_.edge_count(); ++e) {
     edge_slots_.push_back(normal_matrix_.slot(patch_.edges(e, 0), patch_.edges(e, 1)));
     edge_slots_.push_back(normal_matrix_.slot(patch_.edges(e, 1), patch_.edges(e, 0)));

@@ -6,6 +6,13 @@
 // corrections that go through an edge-space pose are sensitive to the last bits of its solution
 // (docs/interpolate.md, "Speed"). CHOLMOD's own OpenMP regions run on one thread while it works
 // (serialized_openmp.hpp). CHOLMOD's headers stay in the source file.
+//
+// The pattern is fixed and the values change at every Gauss-Newton iteration, so the supernodal
+// path keeps the permuted lower triangle that CHOLMOD factorizes, P A P', and only gathers the new
+// values into it: CHOLMOD's own factorization call would build it again with two transposes and
+// their allocations every time. The numbers handed to CHOLMOD are the same, and so is the factor.
+// The factor's values (hundreds of megabytes on a whole mesh) are allocated with the analysis and
+// advised for huge pages before they are first touched.
 #pragma once
 
 #include <Eigen/Core>
@@ -24,17 +31,22 @@ class SparseCholesky {
   SparseCholesky& operator=(const SparseCholesky&) = delete;
 
   /// The symbolic analysis (fill-reducing ordering) of the lower triangle of `matrix`, once per pattern.
+  /// A matrix that goes to CHOLMOD is compressed (Eigen's makeCompressed()); throws posekit::Error otherwise.
   void analyze_pattern(const Eigen::SparseMatrix<double>& matrix);
 
   /// The numeric factorization of `matrix`, whose pattern was analyzed; false where it breaks down
   /// (CHOLMOD: a pivot not positive; the simplicial LDLT: a zero pivot).
   bool factorize(const Eigen::SparseMatrix<double>& matrix);
 
-  /// The solution of matrix * x = rhs with the last factorization.
+  /// The solution of matrix * x = rhs with the last factorization; not finite where CHOLMOD fails
+  /// (out of memory).
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
 
   /// Whether the analyzed pattern went to CHOLMOD.
   bool uses_cholmod() const;
+
+  /// Whether CHOLMOD's analysis chose a supernodal factor, the path that keeps the permuted matrix.
+  bool factorizes_supernodally() const;
 
   /// 60,000 rows: 20,000 vertices of three coordinates each.
   static constexpr Eigen::Index kCholmodRows = 60000;

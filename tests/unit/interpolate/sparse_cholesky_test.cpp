@@ -2,8 +2,12 @@
 // and report one that breaks down, and the size of the system picks between them.
 #include "interpolate/sparse_cholesky.hpp"
 
+#include <posekit/error.hpp>
+
+#include <Eigen/CholmodSupport>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <vector>
 
 namespace posekit::testing {
@@ -50,6 +54,77 @@ TEST(SparseCholesky, BothFactorizationsSolveThePositiveDefiniteSystem) {
   EXPECT_FALSE(simplicial.uses_cholmod());
   EXPECT_TRUE(cholmod.uses_cholmod());
   EXPECT_LT((solutions[0] - solutions[1]).norm(), 1e-8 * solutions[0].norm());
+}
+
+// A side^3 grid's Laplacian plus a diagonal that varies with `seed`: a pattern whose factor is dense
+// enough for CHOLMOD to factorize supernodally, with values that differ from seed to seed.
+Eigen::SparseMatrix<double> varied_cube_laplacian(int side, double seed) {
+  std::vector<Eigen::Triplet<double>> entries;
+  const auto index = [side](int i, int j, int k) { return (i * side + j) * side + k; };
+  for (int i = 0; i < side; ++i) {
+    for (int j = 0; j < side; ++j) {
+      for (int k = 0; k < side; ++k) {
+        const int a = index(i, j, k);
+        entries.emplace_back(a, a, 0.1 + std::abs(std::sin(seed * (a + 1))));
+        const int neighbours[3][3] = {{i + 1, j, k}, {i, j + 1, k}, {i, j, k + 1}};
+        for (const auto& n : neighbours) {
+          if (n[0] >= side || n[1] >= side || n[2] >= side) continue;
+          const int b = index(n[0], n[1], n[2]);
+          const double weight = 1.0 + 0.5 * std::cos(seed * (a + 3 * b));
+          entries.emplace_back(a, a, weight);
+          entries.emplace_back(b, b, weight);
+          entries.emplace_back(a, b, -weight);
+          entries.emplace_back(b, a, -weight);
+        }
+      }
+    }
+  }
+  Eigen::SparseMatrix<double> matrix(side * side * side, side * side * side);
+  matrix.setFromTriplets(entries.begin(), entries.end());
+  return matrix;
+}
+
+TEST(SparseCholesky, RefactorizesSupernodallyToTheBitsOfCholmodsOwnCall) {
+  // The supernodal path hands CHOLMOD the permuted matrix it keeps; CHOLMOD's own factorization
+  // call (here through Eigen's wrapper) builds it afresh. Both must give the same solution, bit for
+  // bit, for every refill of the values. Both read the lower triangle alone: the upper one is off.
+  interpolation::SparseCholesky solver(0);
+  solver.analyze_pattern(varied_cube_laplacian(14, 1.0));
+  ASSERT_TRUE(solver.factorizes_supernodally());
+  for (const double seed : {1.0, 2.5, 7.0}) {
+    Eigen::SparseMatrix<double> matrix = varied_cube_laplacian(14, seed);
+    for (int column = 0; column < matrix.outerSize(); ++column) {
+      for (Eigen::SparseMatrix<double>::InnerIterator entry(matrix, column); entry; ++entry) {
+        if (entry.row() < column) entry.valueRef() *= 1.001;
+      }
+    }
+    const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(matrix.rows(), -1.0, 2.0 + seed);
+    ASSERT_TRUE(solver.factorize(matrix)) << "seed " << seed;
+    const Eigen::VectorXd ours = solver.solve(rhs);
+    Eigen::CholmodDecomposition<Eigen::SparseMatrix<double>, Eigen::Lower> reference(matrix);
+    ASSERT_EQ(reference.info(), Eigen::Success);
+    const Eigen::VectorXd expected = reference.solve(rhs);
+    const Eigen::SparseMatrix<double> symmetric = matrix.selfadjointView<Eigen::Lower>();
+    EXPECT_LT((symmetric * ours - rhs).norm(), 1e-9 * rhs.norm()) << "seed " << seed;
+    EXPECT_EQ((ours - expected).cwiseAbs().maxCoeff(), 0.0) << "seed " << seed;
+  }
+}
+
+TEST(SparseCholesky, TheSupernodalPathReportsAMatrixThatIsNotPositiveDefinite) {
+  Eigen::SparseMatrix<double> matrix = varied_cube_laplacian(14, 1.0);
+  interpolation::SparseCholesky solver(0);
+  solver.analyze_pattern(matrix);
+  ASSERT_TRUE(solver.factorizes_supernodally());
+  ASSERT_TRUE(solver.factorize(matrix));
+  matrix.coeffRef(1000, 1000) = -50.0;
+  EXPECT_FALSE(solver.factorize(matrix));
+}
+
+TEST(SparseCholesky, CholmodRefusesAnUncompressedMatrix) {
+  Eigen::SparseMatrix<double> matrix = shifted_grid_laplacian(5, 1.0);
+  matrix.uncompress();
+  interpolation::SparseCholesky solver(0);
+  EXPECT_THROW(solver.analyze_pattern(matrix), Error);
 }
 
 TEST(SparseCholesky, BothReportASingularMatrix) {
