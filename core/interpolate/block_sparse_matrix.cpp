@@ -14,7 +14,9 @@ BlockSparseMatrix3::BlockSparseMatrix3(int block_count, const std::vector<std::p
     ++count[static_cast<size_t>(j)];
   }
   std::vector<int> start(static_cast<size_t>(block_count) + 1, 0);
-  for (int j = 0; j < block_count; ++j) start[static_cast<size_t>(j) + 1] = start[static_cast<size_t>(j)] + count[static_cast<size_t>(j)];
+  for (int j = 0; j < block_count; ++j) {
+    start[static_cast<size_t>(j) + 1] = start[static_cast<size_t>(j)] + count[static_cast<size_t>(j)];
+  }
   std::vector<int> rows(static_cast<size_t>(start[static_cast<size_t>(block_count)]));
   std::vector<int> next(start.begin(), start.end() - 1);
   const auto put = [&](int row, int column) { rows[static_cast<size_t>(next[static_cast<size_t>(column)]++)] = row; };

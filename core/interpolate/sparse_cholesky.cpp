@@ -136,6 +136,7 @@ struct SparseCholesky::Factorization {
   bool use_cholmod = false;
   cholmod_common common{};
   cholmod_factor* factor = nullptr;
+  Eigen::Index analyzed_nonzeros = 0;
   cholmod_sparse* permuted_lower = nullptr;  // supernodal factors only
   std::vector<int> value_sources;            // per entry of permuted_lower
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> simplicial;
@@ -159,6 +160,7 @@ void SparseCholesky::analyze_pattern(const Eigen::SparseMatrix<double>& matrix) 
   f.release();
   cholmod_sparse view = lower_triangle_view(matrix);
   f.factor = cholmod_analyze(&view, &f.common);
+  f.analyzed_nonzeros = matrix.nonZeros();
   if (f.factor == nullptr) throw Error("sparse Cholesky: CHOLMOD's analysis failed");
   if (!f.factor->is_super) return;
   f.prepare_permuted_lower(matrix);
@@ -177,6 +179,9 @@ bool SparseCholesky::factorize(const Eigen::SparseMatrix<double>& matrix) {
     return f.simplicial.info() == Eigen::Success;
   }
   if (f.factor == nullptr) return false;  // no analysis yet
+  if (!matrix.isCompressed() || matrix.nonZeros() != f.analyzed_nonzeros) {
+    throw Error("sparse Cholesky: the matrix does not have the analyzed pattern");
+  }
   const SerializedOpenMpRegions serialized;
   double no_shift[2] = {0.0, 0.0};
   int done = 0;

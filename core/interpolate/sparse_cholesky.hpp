@@ -35,7 +35,8 @@ class SparseCholesky {
   void analyze_pattern(const Eigen::SparseMatrix<double>& matrix);
 
   /// The numeric factorization of `matrix`, whose pattern was analyzed; false where it breaks down
-  /// (CHOLMOD: a pivot not positive; the simplicial LDLT: a zero pivot).
+  /// (CHOLMOD: a pivot not positive; the simplicial LDLT: a zero pivot). Throws posekit::Error for
+  /// a matrix of CHOLMOD's whose number of stored entries is not the analyzed one's.
   bool factorize(const Eigen::SparseMatrix<double>& matrix);
 
   /// The solution of matrix * x = rhs with the last factorization; not finite where CHOLMOD fails

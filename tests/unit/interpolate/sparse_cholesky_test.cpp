@@ -120,10 +120,12 @@ TEST(SparseCholesky, TheSupernodalPathReportsAMatrixThatIsNotPositiveDefinite) {
   EXPECT_FALSE(solver.factorize(matrix));
 }
 
-TEST(SparseCholesky, CholmodRefusesAnUncompressedMatrix) {
+TEST(SparseCholesky, CholmodRefusesAnUncompressedMatrixOrAnotherPattern) {
   Eigen::SparseMatrix<double> matrix = shifted_grid_laplacian(5, 1.0);
-  matrix.uncompress();
   interpolation::SparseCholesky solver(0);
+  solver.analyze_pattern(matrix);
+  EXPECT_THROW(solver.factorize(shifted_grid_laplacian(6, 1.0)), Error);
+  matrix.uncompress();
   EXPECT_THROW(solver.analyze_pattern(matrix), Error);
 }
 
