@@ -14,8 +14,8 @@ struct ItemBox {
   int item;
 };
 
-/// Every pair (a, b), a < b, of items whose boxes overlap, in no particular order (CGAL's
-/// box_self_intersection_d; in parallel on large inputs with enough cores).
+/// Every pair (a, b), a < b, of items whose boxes overlap, each once, in no particular order (CGAL's
+/// box_self_intersection_d; on large inputs in slabs searched in parallel).
 std::vector<std::pair<int, int>> overlapping_box_pairs(const std::vector<ItemBox>& boxes);
 
 }  // namespace posekit::detail

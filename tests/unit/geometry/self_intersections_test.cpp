@@ -4,6 +4,8 @@
 #include "cgal_reference.hpp"
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
+#include <tbb/task_arena.h>
 
 #include <cmath>
 #include <limits>
@@ -120,11 +122,12 @@ TEST(SelfIntersections, RejectsBadInput) {
   EXPECT_THROW(faces_of(soup), ArgumentError);
 }
 
-// A grid of many small faces pushed through itself: enough boxes for the parallel search, and the
+// A grid of many small faces pushed through itself: enough boxes for the search in slabs, and the
 // exact answer is known from CGAL's own function.
-TEST(SelfIntersections, CrumpledSheetMatchesCgal) {
+Soup crumpled_sheet() {
   const int n = 90;
-  Eigen::MatrixX3d vertices(n * n, 3);
+  Soup sheet;
+  sheet.vertices.resize(n * n, 3);
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < n; ++j) {
       const double u = i / double(n - 1);
@@ -133,23 +136,58 @@ TEST(SelfIntersections, CrumpledSheetMatchesCgal) {
       // so the last part passes in and out through the first.
       const double angle = 7.5 * u;
       const double radius = 1.0 - 0.05 * u + 0.04 * std::sin(9.0 * v + 5.0 * u);
-      vertices.row(i * n + j) << radius * std::cos(angle), radius * std::sin(angle), 2.0 * v + 0.1 * std::cos(11.0 * u);
+      sheet.vertices.row(i * n + j) << radius * std::cos(angle), radius * std::sin(angle),
+          2.0 * v + 0.1 * std::cos(11.0 * u);
     }
   }
-  Eigen::MatrixX3i faces(2 * (n - 1) * (n - 1), 3);
+  sheet.faces.resize(2 * (n - 1) * (n - 1), 3);
   int f = 0;
   for (int i = 0; i + 1 < n; ++i) {
     for (int j = 0; j + 1 < n; ++j) {
       const int a = i * n + j;
-      faces.row(f++) << a, a + n, a + 1;
-      faces.row(f++) << a + 1, a + n, a + n + 1;
+      sheet.faces.row(f++) << a, a + n, a + 1;
+      sheet.faces.row(f++) << a + 1, a + n, a + n + 1;
     }
   }
-  const Faces ours = self_intersecting_faces(vertices, faces);
-  const auto reference = ::posekit::testing::cgal_self_intersecting_faces(vertices, faces);
+  return sheet;
+}
+
+TEST(SelfIntersections, CrumpledSheetMatchesCgal) {
+  const Soup sheet = crumpled_sheet();
+  const Faces ours = self_intersecting_faces(sheet.vertices, sheet.faces);
+  const auto reference = ::posekit::testing::cgal_self_intersecting_faces(sheet.vertices, sheet.faces);
   ASSERT_TRUE(reference.has_value());
   EXPECT_GT(ours.size(), 100u);
   EXPECT_EQ(ours, *reference);
+}
+
+// The broad phase cuts a large mesh into slabs, two per thread: with one thread and with many, thin
+// slabs and faces that cross all of them (long slivers through the rolled sheet), the same pairs.
+TEST(SelfIntersections, SlabsOfAnyCountFindTheSamePairs) {
+  Soup sheet = crumpled_sheet();
+  const auto first_long = static_cast<int>(sheet.vertices.rows());
+  sheet.vertices.conservativeResize(first_long + 9, 3);
+  sheet.vertices.bottomRows(9) << -1.5, -1.5, 0.50, 1.5, 1.5, 0.51, 1.5, 1.5, 0.52,  //
+      -1.5, 0.1, 1.0, 1.5, 0.1, 1.01, 1.5, 0.2, 1.02,                                //
+      0.2, -1.5, 1.5, 0.2, 1.5, 1.51, 0.3, 1.5, 1.5;
+  const auto first_face = static_cast<int>(sheet.faces.rows());
+  sheet.faces.conservativeResize(first_face + 3, 3);
+  for (int k = 0; k < 3; ++k) sheet.faces.row(first_face + k) << first_long + 3 * k, first_long + 3 * k + 1, first_long + 3 * k + 2;
+
+  // Arenas wider than the machine: allowed, so that TBB does not warn that it caps them.
+  const tbb::global_control allow(tbb::global_control::max_allowed_parallelism, 32);
+  const auto pairs_with_threads = [&](int threads) {
+    tbb::task_arena arena(threads);
+    return arena.execute([&] { return self_intersecting_face_pairs(sheet.vertices, sheet.faces); });
+  };
+  const Pairs one = pairs_with_threads(1);
+  const auto reference = ::posekit::testing::cgal_self_intersecting_faces(sheet.vertices, sheet.faces);
+  ASSERT_TRUE(reference.has_value());
+  EXPECT_EQ(faces_in_pairs(one), *reference);
+  int long_face_pairs = 0;
+  for (const auto& [f, g] : one) long_face_pairs += g >= first_face ? 1 : 0;
+  EXPECT_GT(long_face_pairs, 10);
+  for (int threads : {2, 3, 8, 32}) EXPECT_EQ(pairs_with_threads(threads), one) << threads << " threads";
 }
 
 TEST(NewIntersectingFaces, IsTheSetDifference) {
