@@ -9,6 +9,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include <tbb/parallel_for.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <map>
@@ -75,6 +77,36 @@ BENCHMARK_CAPTURE(BM_SelfIntersectionsSharedPose, lion_01, std::string("lion-pos
     ->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_SelfIntersectionsSharedPose, elephant_01, std::string("elephant-poses/elephant-01.obj"))
     ->UseRealTime()->Unit(benchmark::kMillisecond);
+
+// The poses a correction tests between its key frames, searched side by side as its classification
+// does: 19 straight blends between elephant-01 and elephant-03. (One box search for a few poses in
+// turn, on boxes holding each face in all of them, took 1.8 to 4.2 times as long with 2 to 6 poses
+// per search: docs/performance.md.)
+void BM_SelfIntersectionsOfBlendedPoses(benchmark::State& state) {
+  const posekit::Mesh* from = cached_pose("elephant-poses/elephant-01.obj");
+  const posekit::Mesh* to = cached_pose("elephant-poses/elephant-03.obj");
+  if (from == nullptr || to == nullptr) {
+    state.SkipWithError("shared pose data not found: elephant-poses (set POSEKIT_DATA_DIR)");
+    return;
+  }
+  std::vector<Eigen::MatrixX3d> poses;
+  for (int i = 1; i < 20; ++i) {
+    const double t = i / 20.0;
+    poses.push_back((1.0 - t) * from->vertices + t * to->vertices);
+  }
+  size_t pairs = 0;
+  for (auto _ : state) {
+    std::vector<std::vector<std::pair<int, int>>> found(poses.size());
+    tbb::parallel_for(size_t{0}, poses.size(),
+                      [&](size_t i) { found[i] = posekit::self_intersecting_face_pairs(poses[i], from->faces); });
+    pairs = 0;
+    for (const auto& p : found) pairs += p.size();
+    benchmark::DoNotOptimize(found.data());
+  }
+  state.counters["poses"] = static_cast<double>(poses.size());
+  state.counters["pairs"] = static_cast<double>(pairs);
+}
+BENCHMARK(BM_SelfIntersectionsOfBlendedPoses)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 // The intersection oracle of the repair stages: a region of about `range(0)` vertices moved on the
 // elephant (84k faces) and tested again, against the whole-mesh test above.
