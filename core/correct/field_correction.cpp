@@ -146,33 +146,43 @@ RegionField fit_region(const std::vector<int>& region, const VertexClassificatio
   out.report.fit = fit.report();
   out.fitting_seconds = seconds_since(start);
 
+  // Each pass but the last needs only the ends of the vertices whose drift it measures (those
+  // constrained at the end), so only those are integrated; the last integrates the whole region.
+  // Particles are integrated independently, so their ends are the same either way.
   start = Clock::now();
   const Rk45Options integration{options.integration, 0.0, time_scale};
   out.field = {fit.field(), time_scale};
-  const auto integrate = [&](const RbfField& field) {
-    Eigen::MatrixX3d positions = context.reference(region, Eigen::all);
+  const auto integrate = [&](const RbfField& field, const std::vector<int>& vertices) {
+    Eigen::MatrixX3d positions = context.reference(vertices, Eigen::all);
     out.report.integration =
         summarize(context.device.integrate_rk45(*context.device.upload_field(field), positions, integration));
     return positions;
   };
-  out.end_positions = integrate(out.field.field);
+  const auto last_pass = [&](int pass) { return pass == options.drift_passes; };
+  const auto integrate_for_pass = [&](int pass) {
+    return integrate(out.field.field, last_pass(pass) ? region : constraints.vertices);
+  };
+  Eigen::MatrixX3d ends = integrate_for_pass(0);
   out.integration_seconds = seconds_since(start);
 
-  // Endpoint drift of the vertices constrained at the end, by their row in the region.
+  // Endpoint drift of the vertices constrained at the end, from the ends of a pass: rows of the
+  // region in the last pass, of those vertices alone before it.
   start = Clock::now();
   std::vector<int> region_row(classification.constrained.size(), -1);
   for (size_t i = 0; i < region.size(); ++i) region_row[static_cast<size_t>(region[i])] = static_cast<int>(i);
-  const auto drift_of = [&](const Eigen::Ref<const Eigen::MatrixX3d>& ends) {
+  const auto drift_of = [&](const Eigen::Ref<const Eigen::MatrixX3d>& vertex_ends, int pass) {
+    const bool whole_region = last_pass(pass);
     Eigen::MatrixX3d drift(static_cast<Eigen::Index>(constraints.vertices.size()), 3);
     for (size_t k = 0; k < constraints.vertices.size(); ++k) {
       const int v = constraints.vertices[k];
-      drift.row(static_cast<Eigen::Index>(k)) = context.target.row(v) - ends.row(region_row[static_cast<size_t>(v)]);
+      const Eigen::Index row = whole_region ? region_row[static_cast<size_t>(v)] : static_cast<Eigen::Index>(k);
+      drift.row(static_cast<Eigen::Index>(k)) = context.target.row(v) - vertex_ends.row(row);
     }
     return drift;
   };
   std::vector<int> drift_row(classification.constrained.size(), -1);
   for (size_t k = 0; k < constraints.vertices.size(); ++k) drift_row[static_cast<size_t>(constraints.vertices[k])] = static_cast<int>(k);
-  Eigen::MatrixX3d drift = drift_of(out.end_positions);
+  Eigen::MatrixX3d drift = drift_of(ends, 0);
   out.report.drift.before = DriftSummary::of(drift);
   for (int pass = 0; pass < options.drift_passes; ++pass) {
     for (Eigen::Index row = 0; row < scaled_velocities.rows(); ++row) {
@@ -180,9 +190,10 @@ RegionField fit_region(const std::vector<int>& region, const VertexClassificatio
       if (k >= 0) scaled_velocities.row(row) += drift.row(k) / time_scale;
     }
     out.field.field = fit.refit(scaled_velocities);
-    out.end_positions = integrate(out.field.field);
-    drift = drift_of(out.end_positions);
+    ends = integrate_for_pass(pass + 1);
+    drift = drift_of(ends, pass + 1);
   }
+  out.end_positions = std::move(ends);
   out.report.drift.after = DriftSummary::of(drift);
   out.drift_seconds = seconds_since(start);
   out.fitted = true;

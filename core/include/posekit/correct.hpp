@@ -47,7 +47,8 @@ struct CorrectionOptions {
   /// clamped to [0.05, 1], which needed up to half the centers on the shared poses.
   double time_scale = 0.0;
   /// Refits with each constrained vertex's endpoint drift added to its velocities, then integrates
-  /// again: same centers, two triangular solves and one integration per pass (>= 0).
+  /// again: same centers, two triangular solves and one integration per pass (>= 0). Only the last
+  /// integration takes the whole region; those before it take the vertices whose drift they measure.
   int drift_passes = 1;
   /// Poses tested for self-intersections per key-frame interval (>= 1): the key frame and
   /// substeps - 1 poses of the trajectories after it.
