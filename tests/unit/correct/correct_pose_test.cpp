@@ -225,6 +225,14 @@ TEST_F(CorrectPose, DriftCompensationBringsConstrainedVerticesCloserToTheTarget)
   EXPECT_DOUBLE_EQ(region.drift.before.median, plain.field.regions[0].drift.before.median);
   EXPECT_LT(region.drift.after.median, 0.8 * plain.field.regions[0].drift.after.median);
   EXPECT_EQ(compensated.result.new_intersecting_faces, 0);
+  // A second pass starts from the first pass's ends of the vertices it measures alone.
+  options.drift_passes = 2;
+  CorrectionReport twice;
+  correct_pose(arm_->pose(0), arm_->pose(1), arm_->faces(), *device_, options, &twice);
+  ASSERT_EQ(twice.field.regions.size(), 1u);
+  EXPECT_DOUBLE_EQ(twice.field.regions[0].drift.before.median, region.drift.before.median);
+  EXPECT_LT(twice.field.regions[0].drift.after.median, 0.8 * plain.field.regions[0].drift.after.median);
+  EXPECT_EQ(twice.result.new_intersecting_faces, 0);
 }
 
 TEST_F(CorrectPose, TimeScaleChangesTheFieldNotTheOutcome) {
