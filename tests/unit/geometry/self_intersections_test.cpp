@@ -172,7 +172,9 @@ TEST(SelfIntersections, SlabsOfAnyCountFindTheSamePairs) {
       0.2, -1.5, 1.5, 0.2, 1.5, 1.51, 0.3, 1.5, 1.5;
   const auto first_face = static_cast<int>(sheet.faces.rows());
   sheet.faces.conservativeResize(first_face + 3, 3);
-  for (int k = 0; k < 3; ++k) sheet.faces.row(first_face + k) << first_long + 3 * k, first_long + 3 * k + 1, first_long + 3 * k + 2;
+  for (int k = 0; k < 3; ++k) {
+    sheet.faces.row(first_face + k) << first_long + 3 * k, first_long + 3 * k + 1, first_long + 3 * k + 2;
+  }
 
   // Arenas wider than the machine: allowed, so that TBB does not warn that it caps them.
   const tbb::global_control allow(tbb::global_control::max_allowed_parallelism, 32);
