@@ -165,20 +165,18 @@ RegionField fit_region(const std::vector<int>& region, const VertexClassificatio
   Eigen::MatrixX3d ends = integrate_for_pass(0);
   out.integration_seconds = seconds_since(start);
 
-  // Endpoint drift of the vertices constrained at the end, from the ends of a pass: rows of the
-  // region in the last pass, of those vertices alone before it.
+  // Endpoint drift of the vertices constrained at the end: before the last pass the ends are theirs
+  // alone, in the last they are the region's, read at those vertices' rows.
   start = Clock::now();
   std::vector<int> region_row(classification.constrained.size(), -1);
   for (size_t i = 0; i < region.size(); ++i) region_row[static_cast<size_t>(region[i])] = static_cast<int>(i);
-  const auto drift_of = [&](const Eigen::Ref<const Eigen::MatrixX3d>& vertex_ends, int pass) {
-    const bool whole_region = last_pass(pass);
-    Eigen::MatrixX3d drift(static_cast<Eigen::Index>(constraints.vertices.size()), 3);
-    for (size_t k = 0; k < constraints.vertices.size(); ++k) {
-      const int v = constraints.vertices[k];
-      const Eigen::Index row = whole_region ? region_row[static_cast<size_t>(v)] : static_cast<Eigen::Index>(k);
-      drift.row(static_cast<Eigen::Index>(k)) = context.target.row(v) - vertex_ends.row(row);
-    }
-    return drift;
+  std::vector<int> constrained_rows;
+  constrained_rows.reserve(constraints.vertices.size());
+  for (int v : constraints.vertices) constrained_rows.push_back(region_row[static_cast<size_t>(v)]);
+  const Eigen::MatrixX3d goal = context.target(constraints.vertices, Eigen::all);
+  const auto drift_of = [&](const Eigen::MatrixX3d& pass_ends, int pass) -> Eigen::MatrixX3d {
+    if (last_pass(pass)) return goal - pass_ends(constrained_rows, Eigen::all);
+    return goal - pass_ends;
   };
   std::vector<int> drift_row(classification.constrained.size(), -1);
   for (size_t k = 0; k < constraints.vertices.size(); ++k) drift_row[static_cast<size_t>(constraints.vertices[k])] = static_cast<int>(k);
