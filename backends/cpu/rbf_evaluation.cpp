@@ -10,34 +10,65 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace posekit::cpu {
 namespace {
 
-// The sum over centers. `omp simd reduction` permits summing in vector lanes (a reordering that the
-// compiler may not do on its own without -ffast-math); -fopenmp-simd enables the pragma without
-// linking an OpenMP runtime. pk_phi_from_squared_distance has no branch and no library call, so the
-// whole body vectorizes.
+// The sum over centers, in eight lanes whatever the vector width: center j goes to lane j mod 8
+// for the whole blocks of eight, the last count mod 8 centers to lane 0 in order, and the lanes are
+// added 0 to 7 at the end. The order is written out, not left to the vectorizer, so the copies that
+// fuse multiply-adds (AVX2 in two 4-wide halves, AVX-512 in one 8-wide register) round alike and a
+// correction gives the same bits on either processor; it is the order the AVX-512 copy's vectorized
+// reduction had, so earlier results hold. The baseline copy has no fused multiply-add in its
+// blocks and rounds differently. -fopenmp-simd lets the lane loop run in vector lanes without an
+// OpenMP runtime; pk_phi_from_squared_distance has no branch and no library call, so the whole
+// body vectorizes.
+constexpr std::ptrdiff_t kSumLanes = 8;
+
+POSEKIT_CPU_ALWAYS_INLINE double phi_to_center(const double* __restrict cx,
+                                               const double* __restrict cy,
+                                               const double* __restrict cz,
+                                               const double* __restrict ct, std::ptrdiff_t j,
+                                               const double* point) {
+  return pk_phi_from_squared_distance(pk_squared_distance(point[0] - cx[j], point[1] - cy[j],
+                                                          point[2] - cz[j], point[3] - ct[j]));
+}
+
 POSEKIT_CPU_ALWAYS_INLINE void rbf_sum(const double* __restrict cx, const double* __restrict cy,
                                        const double* __restrict cz, const double* __restrict ct,
                                        const double* __restrict wx, const double* __restrict wy,
                                        const double* __restrict wz, std::ptrdiff_t count,
                                        const double* point, double* sum) {
-  const double px = point[0];
-  const double py = point[1];
-  const double pz = point[2];
-  const double pt = point[3];
+  double lane_x[kSumLanes] = {};
+  double lane_y[kSumLanes] = {};
+  double lane_z[kSumLanes] = {};
+  const std::ptrdiff_t whole_blocks_end = count - count % kSumLanes;
+  for (std::ptrdiff_t block = 0; block < whole_blocks_end; block += kSumLanes) {
+#pragma omp simd
+    for (std::ptrdiff_t lane = 0; lane < kSumLanes; ++lane) {
+      const double phi = phi_to_center(cx, cy, cz, ct, block + lane, point);
+      lane_x[lane] += phi * wx[block + lane];
+      lane_y[lane] += phi * wy[block + lane];
+      lane_z[lane] += phi * wz[block + lane];
+    }
+  }
+  for (std::ptrdiff_t j = whole_blocks_end; j < count; ++j) {
+    const double phi = phi_to_center(cx, cy, cz, ct, j, point);
+    // std::fma, not a contracted +=: the vectorizer may otherwise sum this in-order reduction as
+    // separate products and additions in one copy and fused ones in another.
+    lane_x[0] = std::fma(phi, wx[j], lane_x[0]);
+    lane_y[0] = std::fma(phi, wy[j], lane_y[0]);
+    lane_z[0] = std::fma(phi, wz[j], lane_z[0]);
+  }
   double sx = 0.0;
   double sy = 0.0;
   double sz = 0.0;
-#pragma omp simd reduction(+ : sx, sy, sz)
-  for (std::ptrdiff_t j = 0; j < count; ++j) {
-    const double phi = pk_phi_from_squared_distance(
-        pk_squared_distance(px - cx[j], py - cy[j], pz - cz[j], pt - ct[j]));
-    sx += phi * wx[j];
-    sy += phi * wy[j];
-    sz += phi * wz[j];
+  for (std::ptrdiff_t lane = 0; lane < kSumLanes; ++lane) {
+    sx += lane_x[lane];
+    sy += lane_y[lane];
+    sz += lane_z[lane];
   }
   sum[0] = sx;
   sum[1] = sy;

@@ -94,6 +94,36 @@ TEST_P(CpuInstructionSet, EvaluationMatchesTheReference) {
   }
 }
 
+// The sum's order is part of the kernel (rbf_evaluation.cpp): center j in lane j mod 8 over whole
+// blocks of eight, the rest in lane 0 with fused multiply-adds, the lanes added 0 to 7. Rebuilt here
+// from the same copy's phi values (its assembly kernel), the field's values must match bit for bit,
+// whatever the copy's vector width; the copies with FMA fuse every product into its lane.
+TEST_P(CpuInstructionSet, SumsOverCentersInEightLanes) {
+  std::mt19937_64 engine(105);
+  RbfField field = random_field(engine, 1031, 1.0);  // 128 blocks of eight and 7 more
+  field.polynomial.setZero();
+  const Points4 points = random_points(engine, 67);
+  Eigen::MatrixXd phi(points.rows(), field.centers.rows() + 15);
+  device_->assemble_rbf_block(points, field.centers, true, phi);
+  Eigen::MatrixX3d values(points.rows(), 3);
+  device_->evaluate_rbf(*device_->upload_field(field), points, values);
+  const bool fused = GetParam() != cpu::KernelIsa::baseline;
+  const Eigen::Index whole_blocks_end = field.centers.rows() / 8 * 8;
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      double lanes[8] = {};
+      for (Eigen::Index j = 0; j < field.centers.rows(); ++j) {
+        double& lane = lanes[j < whole_blocks_end ? j % 8 : 0];
+        const double product = phi(i, j) * field.weights(j, c);
+        lane = (fused || j >= whole_blocks_end) ? std::fma(phi(i, j), field.weights(j, c), lane) : lane + product;
+      }
+      double expected = 0.0;
+      for (const double lane : lanes) expected += lane;
+      ASSERT_EQ(values(i, c), expected) << "point " << i << ", component " << c;
+    }
+  }
+}
+
 TEST_P(CpuInstructionSet, AssemblyMatchesTheReference) {
   std::mt19937_64 engine(102);
   const Points4 points = random_points(engine, 1031);  // not a multiple of any vector width
