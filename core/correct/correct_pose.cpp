@@ -1,5 +1,6 @@
 // The correction: checks, the unit-sphere frame, the repair ladder on the target, and the
 // measurements of the result against the reference and the target.
+#include "correct/fixed_product_blocking.hpp"
 #include "correct/nested_correction.hpp"
 #include "correct/repair_ladder.hpp"
 
@@ -121,6 +122,7 @@ Eigen::MatrixX3d correct_in_scope(const Eigen::Ref<const Eigen::MatrixX3d>& refe
                                   const CorrectionProgress& progress, const std::vector<int>* allowed,
                                   std::shared_ptr<PairAnalysis> same_pair) {
   const auto start = std::chrono::steady_clock::now();
+  fix_eigen_product_blocking();
   check_options(options);
   if (reference.rows() != target.rows()) {
     throw ArgumentError("reference has " + std::to_string(reference.rows()) + " vertices but target has " +
