@@ -7,10 +7,11 @@
 namespace posekit::detail {
 
 void fix_eigen_product_blocking() {
-  // The values are those of the processor the documented results were measured on; any fixed
-  // values make the sums machine-independent, and these keep those results. Only the L1 size sets
-  // the depth of a product's blocks (and with it the order of its sums); the L2 size sets how small
-  // products are split into rows; the L3 size only has to be nonzero.
+  // Any fixed values make the sums machine-independent; with these, a processor with another L1
+  // reproduces the results measured before they were fixed (docs/correct.md, "On another
+  // machine"). Only the L1 size sets the depth of a product's blocks (and with it the order of its
+  // sums); the L2 size sets how small products are split into rows; the L3 size only has to be
+  // nonzero.
   constexpr std::ptrdiff_t kL1Bytes = 48 * 1024;
   constexpr std::ptrdiff_t kL2Bytes = 512 * 1024;
   constexpr std::ptrdiff_t kL3Bytes = 32 * 1024 * 1024;
