@@ -122,7 +122,7 @@ Eigen::MatrixX3d correct_in_scope(const Eigen::Ref<const Eigen::MatrixX3d>& refe
                                   const CorrectionProgress& progress, const std::vector<int>* allowed,
                                   std::shared_ptr<PairAnalysis> same_pair) {
   const auto start = std::chrono::steady_clock::now();
-  fix_eigen_product_blocking();
+  const FixedProductBlocking fixed_blocking;
   check_options(options);
   if (reference.rows() != target.rows()) {
     throw ArgumentError("reference has " + std::to_string(reference.rows()) + " vertices but target has " +

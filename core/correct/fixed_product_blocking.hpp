@@ -5,8 +5,15 @@
 
 namespace posekit::detail {
 
-/// Sets Eigen's cache sizes, process-wide, to fixed values (48 KiB L1, 512 KiB L2, 32 MiB L3)
-/// wherever they differ, so that its products sum in the same blocks on every processor.
-void fix_eigen_product_blocking();
+/// While one exists, Eigen's cache sizes are fixed process-wide (48 KiB L1, 512 KiB L2, 32 MiB
+/// L3), so that its products sum in the same blocks on every processor. Nested and concurrent ones
+/// share the setting; the last to end gives back the sizes from before the first.
+class FixedProductBlocking {
+ public:
+  FixedProductBlocking();
+  ~FixedProductBlocking();
+  FixedProductBlocking(const FixedProductBlocking&) = delete;
+  FixedProductBlocking& operator=(const FixedProductBlocking&) = delete;
+};
 
 }  // namespace posekit::detail

@@ -209,8 +209,9 @@ using CorrectionProgress = std::function<void(const std::string& stage, double f
 
 /// Corrects `target` (#V by 3) against the clean `reference` (#V by 3) sharing the #F by 3 `faces`:
 /// returns the corrected #V by 3 pose. Throws ArgumentError for inconsistent input or options.
-/// Fixes Eigen's cache sizes process-wide (Eigen::setCpuCacheSizes: 48 KiB, 512 KiB, 32 MiB), so
-/// that the CPU device gives the same bits on every x86-64 processor with AVX2 and FMA.
+/// While it runs, Eigen's cache sizes are fixed process-wide (Eigen::setCpuCacheSizes: 48 KiB, 512
+/// KiB, 32 MiB; the caller's come back after), so that the CPU device gives the same bits on every
+/// x86-64 processor with AVX2 and FMA.
 Eigen::MatrixX3d correct_pose(const Eigen::Ref<const Eigen::MatrixX3d>& reference,
                               const Eigen::Ref<const Eigen::MatrixX3d>& target,
                               const Eigen::Ref<const Eigen::MatrixX3i>& faces,

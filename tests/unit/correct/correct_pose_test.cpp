@@ -72,15 +72,19 @@ TEST_F(CorrectPose, RegionOfInterestAgainstTheWholeMesh) {
 }
 
 // Eigen sizes its products' blocks from the caches it detects, and the block depth decides how the
-// fit's sums round; a correction fixes the sizes, so it gives the same bits whatever the processor
-// (or the host) had set.
+// fit's sums round; a correction fixes the sizes while it runs, so it gives the same bits whatever
+// the processor (or the host) had set, and gives the host's sizes back.
 TEST_F(CorrectPose, ResultDoesNotDependOnTheProcessorsCaches) {
   const std::ptrdiff_t l1 = Eigen::l1CacheSize(), l2 = Eigen::l2CacheSize(), l3 = Eigen::l3CacheSize();
   Eigen::setCpuCacheSizes(16 * 1024, 128 * 1024, 1024 * 1024);
   CorrectionReport small_report;
   const Eigen::MatrixX3d small = correct_pose(arm_->pose(0), arm_->pose(1), arm_->faces(), *device_, {}, &small_report);
+  EXPECT_EQ(Eigen::l1CacheSize(), 16 * 1024);
+  EXPECT_EQ(Eigen::l2CacheSize(), 128 * 1024);
+  EXPECT_EQ(Eigen::l3CacheSize(), 1024 * 1024);
   Eigen::setCpuCacheSizes(96 * 1024, 4096 * 1024, 64 * 1024 * 1024);
   const Eigen::MatrixX3d large = correct_pose(arm_->pose(0), arm_->pose(1), arm_->faces(), *device_, {});
+  EXPECT_EQ(Eigen::l1CacheSize(), 96 * 1024);
   Eigen::setCpuCacheSizes(l1, l2, l3);
   // Deep enough products that the blocks differ: a depth of 200 with a 16 KiB L1.
   ASSERT_GT(small_report.field.centers(), 400);
