@@ -113,9 +113,10 @@ TEST_P(CpuInstructionSet, SumsOverCentersInEightLanes) {
     for (int c = 0; c < 3; ++c) {
       double lanes[8] = {};
       for (Eigen::Index j = 0; j < field.centers.rows(); ++j) {
-        double& lane = lanes[j < whole_blocks_end ? j % 8 : 0];
-        const double product = phi(i, j) * field.weights(j, c);
-        lane = (fused || j >= whole_blocks_end) ? std::fma(phi(i, j), field.weights(j, c), lane) : lane + product;
+        const bool in_block = j < whole_blocks_end;
+        double& lane = lanes[in_block ? j % 8 : 0];
+        const double term_phi = phi(i, j), weight = field.weights(j, c);
+        lane = (fused || !in_block) ? std::fma(term_phi, weight, lane) : lane + term_phi * weight;
       }
       double expected = 0.0;
       for (const double lane : lanes) expected += lane;
