@@ -54,9 +54,11 @@ constexpr double kLargestFoldMove = 24.0;  // mean edge lengths
 // intersecting faces and those near them; zero elsewhere. `pushed` flags the vertices given one. A
 // vertex lies in another part where its winding number differs by more than a half from its
 // winding number in `reference`: what the reference already has (its own parts passing through
-// each other, folds that turn a patch inside out) is not a contact to separate.
+// each other, folds that turn a patch inside out) is not a contact to separate. `reference_tree` is
+// the winding-number tree of `reference`.
 Eigen::MatrixX3d contact_pushes(const Eigen::Ref<const Eigen::MatrixX3d>& pose,
                                 const Eigen::Ref<const Eigen::MatrixX3d>& reference,
+                                const WindingNumberTree& reference_tree,
                                 const Eigen::Ref<const Eigen::MatrixX3i>& faces,
                                 const std::vector<int>& intersecting,
                                 const std::vector<std::pair<int, int>>& pairs, const AdjacencyLists& neighbours,
@@ -68,7 +70,7 @@ Eigen::MatrixX3d contact_pushes(const Eigen::Ref<const Eigen::MatrixX3d>& pose,
     if (tested[v] != 0) tested_rows.push_back(static_cast<int>(v));
   }
   const Eigen::VectorXd winding = winding_numbers(pose, faces, pose(tested_rows, Eigen::all)) -
-                                  winding_numbers(reference, faces, reference(tested_rows, Eigen::all));
+                                  reference_tree.at(reference(tested_rows, Eigen::all));
   std::vector<char> inside(vertex_count, 0);
   for (size_t k = 0; k < tested_rows.size(); ++k) {
     if (std::abs(winding(static_cast<Eigen::Index>(k))) > kEnteredWinding) inside[static_cast<size_t>(tested_rows[k])] = 1;
@@ -237,6 +239,7 @@ SeparationOutcome separate_contacts(const CorrectionContext& context, Candidate 
   Candidate pose = std::move(start);
   SeparationOutcome out{pose, 0, pose.new_face_count()};
   int stale_rounds = 0;
+  std::optional<WindingNumberTree> reference_tree;
   const auto keep_if_better = [&] {
     if (pose.new_face_count() >= out.best.new_face_count()) return false;
     out.best = pose;
@@ -249,7 +252,9 @@ SeparationOutcome separate_contacts(const CorrectionContext& context, Candidate 
     if (pose.new_face_count() == 0) break;
 
     std::vector<char> pushed;
-    const Eigen::MatrixX3d push = contact_pushes(pose.pose(), context.reference, faces, pose.new_faces(), pose.pairs(),
+    // The reference's tree serves every round: built at the first push, when a round gets that far.
+    if (!reference_tree) reference_tree.emplace(context.reference, faces);
+    const Eigen::MatrixX3d push = contact_pushes(pose.pose(), context.reference, *reference_tree, faces, pose.new_faces(), pose.pairs(),
                                                  neighbours, faces_of_vertex, kClearance * mean_edge, pushed);
     std::vector<char> following = within_rings(pushed, neighbours, kFollowingRings);
     for (size_t v = 0; v < following.size(); ++v) {

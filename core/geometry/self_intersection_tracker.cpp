@@ -15,7 +15,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
-#include <unordered_map>
+#include <utility>
 
 namespace posekit {
 namespace {
@@ -56,11 +56,19 @@ void sort_unique(FacePairs& pairs) {
 }
 
 
+// An item stored with its box, so that a query reads the boxes of a cell one after another rather
+// than looking each up in a table of the whole mesh's boxes (a cache miss per item on a large mesh).
+struct BoxedItem {
+  Box box;
+  int item = 0;
+};
+
 // Items (faces) bucketed by the grid cell of their box's lower corner: an item whose box is at most a
 // cell wide overlaps a query box only if its lower corner lies within one cell below the query's.
 // Items wider than a cell go to a coarser level of cells kCoarserFactor times as wide, and so on:
 // kept in one list instead, the few percent of wide faces of a large mesh were scanned by every query
-// and cost more than the rest of it.
+// and cost more than the rest of it. The cells are an open-addressing table: a query probes up to 27
+// cells, most of them empty, and a miss costs one probe of a flat array instead of a node hash.
 class Buckets {
  public:
   Buckets(double cell, const std::array<double, 3>& origin, int level = 0)
@@ -69,7 +77,9 @@ class Buckets {
       : cell_(other.cell_),
         origin_(other.origin_),
         level_(other.level_),
-        cells_(other.cells_),
+        slots_(other.slots_),
+        occupied_(other.occupied_),
+        shift_(other.shift_),
         oversized_(other.oversized_),
         coarser_(other.coarser_ ? std::make_unique<Buckets>(*other.coarser_) : nullptr) {}
   Buckets& operator=(const Buckets& other) {
@@ -82,12 +92,12 @@ class Buckets {
 
   void insert(int item, const Box& box) {
     if (box.extent() <= cell_) {
-      cells_[key_of(box)].push_back(item);
+      cell_items(key_of(box)).push_back({box, item});
     } else if (level_ + 1 < kLevels) {
       if (!coarser_) coarser_ = std::make_unique<Buckets>(cell_ * kCoarserFactor, origin_, level_ + 1);
       coarser_->insert(item, box);
     } else {
-      oversized_.push_back(item);
+      oversized_.push_back({box, item});
     }
   }
 
@@ -96,19 +106,20 @@ class Buckets {
       if (coarser_) coarser_->erase(item, box);
       return;
     }
-    std::vector<int>& bucket = box.extent() > cell_ ? oversized_ : cells_[key_of(box)];
-    const auto found = std::find(bucket.begin(), bucket.end(), item);
-    if (found != bucket.end()) {
-      *found = bucket.back();
-      bucket.pop_back();
+    std::vector<BoxedItem>* bucket = box.extent() > cell_ ? &oversized_ : find(key_of(box));
+    if (bucket == nullptr) return;
+    const auto found =
+        std::find_if(bucket->begin(), bucket->end(), [item](const BoxedItem& stored) { return stored.item == item; });
+    if (found != bucket->end()) {
+      *found = bucket->back();
+      bucket->pop_back();
     }
   }
 
-  // Calls visit(item) for every stored item whose box (boxes[item]) overlaps `box`. A box wider than
-  // the occupied cells are many (a face stretched across the pose) visits those cells instead of
-  // its range.
+  // Calls visit(item) for every stored item whose box overlaps `box`. A box wider than the occupied
+  // cells are many (a face stretched across the pose) visits those cells instead of its range.
   template <class Visit>
-  void query(const Box& box, const std::vector<Box>& boxes, Visit&& visit) const {
+  void query(const Box& box, Visit&& visit) const {
     std::array<std::int64_t, 3> low{};
     std::array<std::int64_t, 3> high{};
     double range_cells = 1.0;
@@ -117,25 +128,26 @@ class Buckets {
       high[axis] = index(axis, box.max[axis]);
       range_cells *= static_cast<double>(high[axis] - low[axis] + 1);
     }
-    const auto visit_bucket = [&](const std::vector<int>& bucket) {
-      for (int item : bucket) {
-        if (boxes[static_cast<size_t>(item)].overlaps(box)) visit(item);
+    const auto visit_bucket = [&](const std::vector<BoxedItem>& bucket) {
+      for (const BoxedItem& stored : bucket) {
+        if (stored.box.overlaps(box)) visit(stored.item);
       }
     };
-    if (range_cells > static_cast<double>(cells_.size())) {
-      for (const auto& [key, bucket] : cells_) visit_bucket(bucket);
+    if (range_cells > static_cast<double>(occupied_)) {
+      for (const Slot& slot : slots_) {
+        if (slot.key != kNoKey) visit_bucket(slot.items);
+      }
     } else {
       for (std::int64_t x = low[0]; x <= high[0]; ++x) {
         for (std::int64_t y = low[1]; y <= high[1]; ++y) {
           for (std::int64_t z = low[2]; z <= high[2]; ++z) {
-            const auto found = cells_.find(key(x, y, z));
-            if (found != cells_.end()) visit_bucket(found->second);
+            if (const std::vector<BoxedItem>* bucket = find(key(x, y, z))) visit_bucket(*bucket);
           }
         }
       }
     }
     visit_bucket(oversized_);
-    if (coarser_) coarser_->query(box, boxes, visit);
+    if (coarser_) coarser_->query(box, visit);
   }
 
  private:
@@ -143,6 +155,14 @@ class Buckets {
   // items are kept in a list (a face across the whole pose).
   static constexpr double kCoarserFactor = 4.0;
   static constexpr int kLevels = 8;
+  // No packed key has all 64 bits set (three 21-bit indices), so it marks a free slot.
+  static constexpr std::uint64_t kNoKey = ~std::uint64_t{0};
+  static constexpr std::size_t kFirstSlots = 64;
+
+  struct Slot {
+    std::uint64_t key = kNoKey;
+    std::vector<BoxedItem> items;
+  };
 
   // Index of `coordinate` along `axis`, clamped to the grid.
   std::int64_t index(int axis, double coordinate) const {
@@ -156,16 +176,68 @@ class Buckets {
     return key(index(0, box.min[0]), index(1, box.min[1]), index(2, box.min[2]));
   }
 
+  // Fibonacci hashing: neighbouring cells' keys differ in their low bits of each index, which the
+  // multiplication spreads over the top bits the slot is taken from.
+  std::size_t home(std::uint64_t cell_key) const {
+    return static_cast<std::size_t>((cell_key * 0x9E3779B97F4A7C15ULL) >> shift_);
+  }
+
+  const std::vector<BoxedItem>* find(std::uint64_t cell_key) const {
+    if (slots_.empty()) return nullptr;
+    const std::size_t mask = slots_.size() - 1;
+    for (std::size_t i = home(cell_key);; i = (i + 1) & mask) {
+      const Slot& slot = slots_[i];
+      if (slot.key == cell_key) return &slot.items;
+      if (slot.key == kNoKey) return nullptr;
+    }
+  }
+  std::vector<BoxedItem>* find(std::uint64_t cell_key) {
+    return const_cast<std::vector<BoxedItem>*>(std::as_const(*this).find(cell_key));
+  }
+
+  // The items of a cell, the cell added if new. The table stays at most half full.
+  std::vector<BoxedItem>& cell_items(std::uint64_t cell_key) {
+    if (2 * (occupied_ + 1) > slots_.size()) grow();
+    const std::size_t mask = slots_.size() - 1;
+    for (std::size_t i = home(cell_key);; i = (i + 1) & mask) {
+      Slot& slot = slots_[i];
+      if (slot.key == cell_key) return slot.items;
+      if (slot.key == kNoKey) {
+        slot.key = cell_key;
+        ++occupied_;
+        return slot.items;
+      }
+    }
+  }
+
+  void grow() {
+    std::vector<Slot> old = std::move(slots_);
+    const std::size_t size = old.empty() ? kFirstSlots : 2 * old.size();
+    slots_ = std::vector<Slot>(size);
+    shift_ = 64;
+    for (std::size_t s = size; s > 1; s >>= 1) --shift_;
+    const std::size_t mask = size - 1;
+    for (Slot& moved : old) {
+      if (moved.key == kNoKey) continue;
+      std::size_t i = home(moved.key);
+      while (slots_[i].key != kNoKey) i = (i + 1) & mask;
+      slots_[i] = std::move(moved);
+    }
+  }
+
   double cell_;
   std::array<double, 3> origin_;
   int level_;
-  std::unordered_map<std::uint64_t, std::vector<int>> cells_;
-  std::vector<int> oversized_;
+  std::vector<Slot> slots_;
+  std::size_t occupied_ = 0;
+  int shift_ = 64;
+  std::vector<BoxedItem> oversized_;
   std::unique_ptr<Buckets> coarser_;
 };
 
-// A cell as wide as most faces' boxes, from the corner of the pose's bounding box.
-Buckets buckets_for(const Eigen::Ref<const Eigen::MatrixX3d>& vertices, const std::vector<Box>& boxes) {
+// A cell as wide as most faces' boxes, from the lower corner of all the boxes (not of the whole pose:
+// the moved faces' own buckets need no pass over every vertex).
+Buckets buckets_for(const std::vector<Box>& boxes) {
   std::vector<double> extents(boxes.size());
   for (size_t f = 0; f < boxes.size(); ++f) extents[f] = boxes[f].extent();
   double cell = 0.0;
@@ -177,7 +249,10 @@ Buckets buckets_for(const Eigen::Ref<const Eigen::MatrixX3d>& vertices, const st
   }
   if (!(cell > 0.0)) cell = 1.0;  // every face a point: any cell works
   std::array<double, 3> origin{};
-  for (int axis = 0; axis < 3; ++axis) origin[axis] = vertices.rows() > 0 ? vertices.col(axis).minCoeff() : 0.0;
+  if (!boxes.empty()) origin = boxes.front().min;
+  for (const Box& box : boxes) {
+    for (int axis = 0; axis < 3; ++axis) origin[axis] = std::min(origin[axis], box.min[axis]);
+  }
   return {cell, origin};
 }
 
@@ -203,7 +278,7 @@ class SelfIntersectionTracker::Grid {
       boxes[f] = face_box(vertices, mesh_faces, static_cast<int>(f));
       degenerate[f] = test.degenerate(static_cast<int>(f)) ? 1 : 0;
     }
-    buckets = buckets_for(vertices, boxes);
+    buckets = buckets_for(boxes);
     for (size_t f = 0; f < boxes.size(); ++f) buckets.insert(static_cast<int>(f), boxes[f]);
   }
 
@@ -229,7 +304,7 @@ class SelfIntersectionTracker::Grid {
       moved_degenerate[i] = test.degenerate(moved[i]) ? 1 : 0;
     }
     // The moved faces among themselves, through buckets of their own new boxes (by position in `moved`).
-    Buckets among_moved = buckets_for(changed, moved_boxes);
+    Buckets among_moved = buckets_for(moved_boxes);
     for (size_t i = 0; i < moved.size(); ++i) among_moved.insert(static_cast<int>(i), moved_boxes[i]);
     std::vector<char> is_moved(boxes.size(), 0);
     for (int f : moved) is_moved[static_cast<size_t>(f)] = 1;
@@ -242,11 +317,11 @@ class SelfIntersectionTracker::Grid {
         out.emplace_back(f, f);
         return;
       }
-      buckets.query(moved_boxes[i], boxes, [&](int g) {
+      buckets.query(moved_boxes[i], [&](int g) {
         if (degenerate[static_cast<size_t>(g)] != 0 || is_moved[static_cast<size_t>(g)] != 0) return;
         if (test.intersect(f, g)) out.emplace_back(std::min(f, g), std::max(f, g));
       });
-      among_moved.query(moved_boxes[i], moved_boxes, [&](int j) {
+      among_moved.query(moved_boxes[i], [&](int j) {
         if (static_cast<size_t>(j) <= i || moved_degenerate[static_cast<size_t>(j)] != 0) return;
         if (test.intersect(f, moved[static_cast<size_t>(j)])) out.emplace_back(f, moved[static_cast<size_t>(j)]);
       });

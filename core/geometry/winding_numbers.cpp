@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <array>
@@ -36,6 +37,8 @@ constexpr int kLeafFaces = 8;
 // at four it stays within 0.02 of the exact sum, far below the half that separates inside
 // from outside.
 constexpr double kFarRatio = 4.0;
+// Subtrees over at least this many faces build their two halves in parallel.
+constexpr int kParallelBuildFaces = 4096;
 
 // A bounding-volume hierarchy of the faces whose nodes know the dipole of their faces: the sum of
 // the area vectors (twice the area times the unit normal, halved) and their area-weighted centre.
@@ -48,16 +51,19 @@ class DipoleTree {
     std::iota(order_.begin(), order_.end(), 0);
     centroids_.resize(static_cast<size_t>(count));
     area_vectors_.resize(static_cast<size_t>(count));
-    for (int f = 0; f < count; ++f) {
+    areas_.resize(static_cast<size_t>(count));
+    tbb::parallel_for(0, count, [&](int f) {
       const Eigen::Vector3d a = vertices.row(faces(f, 0)).transpose();
       const Eigen::Vector3d b = vertices.row(faces(f, 1)).transpose();
       const Eigen::Vector3d c = vertices.row(faces(f, 2)).transpose();
-      centroids_[static_cast<size_t>(f)] = (a + b + c) / 3.0;
-      area_vectors_[static_cast<size_t>(f)] = 0.5 * (b - a).cross(c - a);
-    }
+      const auto face = static_cast<size_t>(f);
+      centroids_[face] = (a + b + c) / 3.0;
+      area_vectors_[face] = 0.5 * (b - a).cross(c - a);
+      areas_[face] = area_vectors_[face].norm();
+    });
     if (count > 0) {
-      nodes_.resize(1);
-      build(0, 0, count);
+      nodes_.resize(static_cast<size_t>(node_count(count)));
+      build(0, 0, count, 1);
     }
   }
 
@@ -98,8 +104,16 @@ class DipoleTree {
     int first_child = -1;                                    // the two children, adjacent; -1: a leaf
   };
 
-  // Fills node `slot` over order_[begin, end) and builds its subtree.
-  void build(int slot, int begin, int end) {
+  // Nodes of the subtree over `faces` faces: the split halves them until a leaf holds kLeafFaces.
+  static int node_count(int faces) {
+    return faces > kLeafFaces ? 1 + node_count(faces / 2) + node_count(faces - faces / 2) : 1;
+  }
+
+  // Fills node `slot` over order_[begin, end) and builds its subtree, whose further nodes take the
+  // slots from `next` on: a node's two children side by side, then the first child's subtree, then
+  // the second's. The slots are known before the halves are built, so the halves are built side by
+  // side and the tree is the same as built in one thread.
+  void build(int slot, int begin, int end, int next) {
     Eigen::Vector3d low = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
     Eigen::Vector3d high = -low;
     Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
@@ -109,7 +123,7 @@ class DipoleTree {
     node.end = end;
     for (int i = begin; i < end; ++i) {
       const auto f = static_cast<size_t>(order_[static_cast<size_t>(i)]);
-      const double a = area_vectors_[f].norm();
+      const double a = areas_[f];
       weighted += a * centroids_[f];
       area += a;
       node.area_vector += area_vectors_[f];
@@ -131,10 +145,17 @@ class DipoleTree {
       std::nth_element(order_.begin() + begin, order_.begin() + middle, order_.begin() + end, [&](int a, int b) {
         return centroids_[static_cast<size_t>(a)](axis) < centroids_[static_cast<size_t>(b)](axis);
       });
-      node.first_child = static_cast<int>(nodes_.size());
-      nodes_.resize(nodes_.size() + 2);
-      build(node.first_child, begin, middle);
-      build(node.first_child + 1, middle, end);
+      node.first_child = next;
+      const int first_subtree = next + 2;
+      const int second_subtree = first_subtree + node_count(middle - begin) - 1;
+      const auto first = [&] { build(node.first_child, begin, middle, first_subtree); };
+      const auto second = [&] { build(node.first_child + 1, middle, end, second_subtree); };
+      if (end - begin >= kParallelBuildFaces) {
+        tbb::parallel_invoke(first, second);
+      } else {
+        first();
+        second();
+      }
     }
     nodes_[static_cast<size_t>(slot)] = node;
   }
@@ -144,19 +165,47 @@ class DipoleTree {
   std::vector<int> order_;
   std::vector<Eigen::Vector3d> centroids_;
   std::vector<Eigen::Vector3d> area_vectors_;
+  std::vector<double> areas_;  // the norms of area_vectors_, read at every level of the build
   std::vector<Node> nodes_;
 };
 
-}  // namespace
-
-Eigen::VectorXd winding_numbers(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
-                                const Eigen::Ref<const Eigen::MatrixX3i>& faces,
-                                const Eigen::Ref<const Eigen::MatrixX3d>& points) {
-  const DipoleTree tree(vertices, faces);
+Eigen::VectorXd winding_numbers_in(const DipoleTree& tree, const Eigen::Ref<const Eigen::MatrixX3d>& points) {
   Eigen::VectorXd winding(points.rows());
   tbb::parallel_for(Eigen::Index{0}, points.rows(),
                     [&](Eigen::Index p) { winding(p) = tree.winding_number(points.row(p).transpose()); });
   return winding;
+}
+
+}  // namespace
+
+// The tree over the surface's own copy, which it keeps as long as the tree lives.
+class WindingNumberTree::Tree {
+ public:
+  Tree(const Eigen::Ref<const Eigen::MatrixX3d>& vertices, const Eigen::Ref<const Eigen::MatrixX3i>& faces)
+      : vertices_(vertices), faces_(faces), dipoles_(vertices_, faces_) {}
+  const DipoleTree& dipoles() const { return dipoles_; }
+
+ private:
+  Eigen::MatrixX3d vertices_;
+  Eigen::MatrixX3i faces_;
+  DipoleTree dipoles_;
+};
+
+WindingNumberTree::WindingNumberTree(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
+                                     const Eigen::Ref<const Eigen::MatrixX3i>& faces)
+    : tree_(std::make_unique<Tree>(vertices, faces)) {}
+WindingNumberTree::~WindingNumberTree() = default;
+WindingNumberTree::WindingNumberTree(WindingNumberTree&&) noexcept = default;
+WindingNumberTree& WindingNumberTree::operator=(WindingNumberTree&&) noexcept = default;
+
+Eigen::VectorXd WindingNumberTree::at(const Eigen::Ref<const Eigen::MatrixX3d>& points) const {
+  return winding_numbers_in(tree_->dipoles(), points);
+}
+
+Eigen::VectorXd winding_numbers(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
+                                const Eigen::Ref<const Eigen::MatrixX3i>& faces,
+                                const Eigen::Ref<const Eigen::MatrixX3d>& points) {
+  return winding_numbers_in(DipoleTree(vertices, faces), points);
 }
 
 }  // namespace posekit

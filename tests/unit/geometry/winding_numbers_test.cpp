@@ -7,8 +7,10 @@
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include <cmath>
+#include <optional>
 #include <random>
 
 namespace posekit {
@@ -66,6 +68,33 @@ TEST(WindingNumbers, AgreeWithTheExactSumOnASelfIntersectingShape) {
     beyond_one += exact > 1.5 ? 1 : 0;
   }
   EXPECT_GT(beyond_one, 0);  // some points lie inside both layers of the fold
+}
+
+// The tree's halves are built in parallel on large meshes; the tree, and so every value, must be the
+// one a single thread builds. A tree kept for later answers as the one-off function does.
+TEST(WindingNumbers, TheSameBitsOnAnyNumberOfThreadsAndFromAKeptTree) {
+  const Mesh sphere = testing::icosphere(5);  // 20,480 faces: several levels split in parallel
+  Eigen::MatrixX3d vertices = sphere.vertices;
+  for (Eigen::Index v = 0; v < vertices.rows(); ++v) vertices(v, 0) *= 1.0 + 0.3 * std::sin(3.0 * vertices(v, 1));
+  Eigen::MatrixX3d points = 1.01 * vertices.topRows(500);
+  points.bottomRows(250) *= 0.9;
+  const Eigen::VectorXd parallel = winding_numbers(vertices, sphere.faces, points);
+  Eigen::VectorXd serial;
+  tbb::task_arena one_thread(1);
+  one_thread.execute([&] { serial = winding_numbers(vertices, sphere.faces, points); });
+  ASSERT_EQ(parallel.size(), serial.size());
+  for (Eigen::Index i = 0; i < parallel.size(); ++i) EXPECT_EQ(parallel(i), serial(i)) << "point " << i;
+
+  std::optional<WindingNumberTree> kept;
+  {
+    const Eigen::MatrixX3d copy = vertices;  // the tree keeps its own copy
+    kept.emplace(copy, sphere.faces);
+  }
+  const WindingNumberTree moved = std::move(*kept);
+  const Eigen::VectorXd from_tree = moved.at(points);
+  for (Eigen::Index i = 0; i < parallel.size(); ++i) EXPECT_EQ(from_tree(i), parallel(i)) << "point " << i;
+  EXPECT_NEAR(from_tree(0), 0.0, 2e-2);
+  EXPECT_NEAR(from_tree(points.rows() - 1), 1.0, 2e-2);
 }
 
 }  // namespace
