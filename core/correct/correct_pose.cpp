@@ -120,7 +120,7 @@ Eigen::MatrixX3d correct_in_scope(const Eigen::Ref<const Eigen::MatrixX3d>& refe
                                   const CorrectionOptions& options,
                                   CorrectionScope scope, CorrectionReport* report_out,
                                   const CorrectionProgress& progress, const std::vector<int>* allowed,
-                                  std::shared_ptr<PairAnalysis> same_pair) {
+                                  LentAnalysis same_pair) {
   const auto start = std::chrono::steady_clock::now();
   const FixedProductBlocking fixed_blocking;
   check_options(options);
@@ -139,15 +139,16 @@ Eigen::MatrixX3d correct_in_scope(const Eigen::Ref<const Eigen::MatrixX3d>& refe
   report.device = device.info().backend + ": " + device.info().name;
 
   const auto normalization_start = std::chrono::steady_clock::now();
-  // A pair lent with its analysis is in that analysis's frame already: the identity keeps it there.
-  const UnitSphereNormalization normalization =
-      same_pair ? UnitSphereNormalization{} : shared_unit_sphere_normalization({reference, target});
+  // A pair lent in its analysis's frame stays there: the identity keeps it.
+  const UnitSphereNormalization normalization = same_pair.analysis && same_pair.poses_in_its_frame
+                                                    ? UnitSphereNormalization{}
+                                                    : shared_unit_sphere_normalization({reference, target});
   const Eigen::MatrixX3d reference_n = normalization.apply(reference);
   const Eigen::MatrixX3d target_n = normalization.apply(target);
   // Nested runs name no vertex of the whole pose.
   CorrectionOptions scoped = options;
   if (scope != CorrectionScope::whole_pose && scope != CorrectionScope::stretch_retry) scoped.excluded_vertices.clear();
-  CorrectionContext context = make_context(reference_n, target_n, faces, device, scoped, scope, progress, same_pair);
+  CorrectionContext context = make_context(reference_n, target_n, faces, device, scoped, scope, progress, std::move(same_pair.analysis));
   if (allowed != nullptr) {
     context.reference_intersecting = *allowed;
     context.target_new_faces = static_cast<int>(

@@ -48,6 +48,17 @@ struct PairAnalysis {
   std::vector<FacePairs> tested_pairs;  ///< per tested pose, the reference first and the target last
   std::optional<VertexClassification> classification;
   std::optional<Eigen::MatrixX3d> halfway;  ///< in the frame of the context that holds it
+  /// The first leg's own analysis: its pair (the reference and the halfway pose) is the same in
+  /// every run of this pair, whatever the collar.
+  std::shared_ptr<PairAnalysis> first_leg;
+};
+
+/// An analysis lent to a nested run of the same two poses. Where `poses_in_its_frame`, they come in
+/// the frame the analysis was made in (the wider collar's run) and are not normalized again;
+/// otherwise they come as the run that made it got them, and are normalized as it normalized them.
+struct LentAnalysis {
+  std::shared_ptr<PairAnalysis> analysis;
+  bool poses_in_its_frame = true;
 };
 
 /// Holds views of the poses and faces it was made from, which must outlive it.

@@ -3,7 +3,8 @@
 // field: the reference to the halfway pose, then the corrected halfway pose to the target. On the
 // most entangled poses the two shorter motions free what the whole way could not; the halfway pose
 // of the gradient-space key frames did worse than the edge-space one (docs/correct.md). The pose
-// depends on the pair alone: a run of the same pair with a wider collar borrows it (0 seconds).
+// depends on the pair alone: a run of the same pair with a wider collar borrows it (0 seconds), and
+// the first leg's analysis with it.
 #include "correct/nested_correction.hpp"
 #include "correct/repair_stage.hpp"
 
@@ -43,9 +44,13 @@ class HalfwayStage final : public RepairStage {
         return std::nullopt;  // no halfway pose for this mesh (edge space needs a manifold surface)
       }
     }
+    // The first leg's pair is the same in every run of this pair: its analysis is made once and lent.
+    std::shared_ptr<PairAnalysis>& first_leg_analysis = context.pair_analysis->first_leg;
+    if (!first_leg_analysis) first_leg_analysis = std::make_shared<PairAnalysis>();
     CorrectionReport first_leg;
-    const Eigen::MatrixX3d halfway_corrected = correct_in_scope(context.reference, *halfway, context.faces, context.device,
-                                                                context.options, CorrectionScope::leg, &first_leg);
+    const Eigen::MatrixX3d halfway_corrected =
+        correct_in_scope(context.reference, *halfway, context.faces, context.device, context.options,
+                         CorrectionScope::leg, &first_leg, {}, nullptr, LentAnalysis{first_leg_analysis, false});
     CorrectionReport second_leg;
     const Eigen::MatrixX3d corrected =
         correct_in_scope(halfway_corrected, context.target, context.faces, context.device, context.options,

@@ -42,7 +42,7 @@ class WiderCollarStage final : public RepairStage {
     // The same pair in the same frame: the run borrows what depends on the pair alone.
     const Eigen::MatrixX3d corrected = correct_in_scope(context.reference, context.target, context.faces,
                                                         context.device, wider, scope, nullptr, {}, nullptr,
-                                                        context.pair_analysis);
+                                                        LentAnalysis{context.pair_analysis, true});
     // The proposal's own count: the nested run need not measure its result a second time.
     Candidate proposal = whole_pose_proposal(current, corrected, report);
     const int new_faces = proposal.new_face_count();

@@ -90,7 +90,7 @@ TEST(WiderCollar, ItsRunBorrowsWhatDependsOnThePairAlone) {
   wider.collar_rings = 8;
   const auto run = [&](std::shared_ptr<PairAnalysis> lent, CorrectionReport& report) {
     return correct_in_scope(fixture.reference, fixture.target, fixture.faces, *fixture.device, wider,
-                            CorrectionScope::whole_pose, &report, {}, nullptr, std::move(lent));
+                            CorrectionScope::whole_pose, &report, {}, nullptr, LentAnalysis{std::move(lent), true});
   };
   CorrectionReport borrowed;
   CorrectionReport computed;
