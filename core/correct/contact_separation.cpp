@@ -254,8 +254,9 @@ SeparationOutcome separate_contacts(const CorrectionContext& context, Candidate 
     std::vector<char> pushed;
     // The reference's tree serves every round: built at the first push, when a round gets that far.
     if (!reference_tree) reference_tree.emplace(context.reference, faces);
-    const Eigen::MatrixX3d push = contact_pushes(pose.pose(), context.reference, *reference_tree, faces, pose.new_faces(), pose.pairs(),
-                                                 neighbours, faces_of_vertex, kClearance * mean_edge, pushed);
+    const Eigen::MatrixX3d push =
+        contact_pushes(pose.pose(), context.reference, *reference_tree, faces, pose.new_faces(), pose.pairs(),
+                       neighbours, faces_of_vertex, kClearance * mean_edge, pushed);
     std::vector<char> following = within_rings(pushed, neighbours, kFollowingRings);
     for (size_t v = 0; v < following.size(); ++v) {
       if (pushed[v] != 0) following[v] = 0;

@@ -148,7 +148,8 @@ Eigen::MatrixX3d correct_in_scope(const Eigen::Ref<const Eigen::MatrixX3d>& refe
   // Nested runs name no vertex of the whole pose.
   CorrectionOptions scoped = options;
   if (scope != CorrectionScope::whole_pose && scope != CorrectionScope::stretch_retry) scoped.excluded_vertices.clear();
-  CorrectionContext context = make_context(reference_n, target_n, faces, device, scoped, scope, progress, std::move(same_pair.analysis));
+  CorrectionContext context =
+      make_context(reference_n, target_n, faces, device, scoped, scope, progress, std::move(same_pair.analysis));
   if (allowed != nullptr) {
     context.reference_intersecting = *allowed;
     context.target_new_faces = static_cast<int>(

@@ -42,7 +42,9 @@ struct FieldOutcome {
 /// What a correction computes from its pair of poses alone, whatever the collar: the field's key
 /// frames, the pairs that intersect in its tested poses and the vertex classification, and the
 /// halfway pose of the legs. Each is computed once, by the stage that first needs it, and lent to the
-/// run that corrects the same pair again in the same frame with a wider collar.
+/// run that corrects the same pair again in the same frame with a wider collar. The options it reads
+/// (key frames, intersection substeps, exclusion rings; analyze_pair in field_correction.cpp) are
+/// ones that run keeps.
 struct PairAnalysis {
   std::shared_ptr<const VertexTrajectories> trajectories;
   std::vector<FacePairs> tested_pairs;  ///< per tested pose, the reference first and the target last
@@ -58,7 +60,7 @@ struct PairAnalysis {
 /// otherwise they come as the run that made it got them, and are normalized as it normalized them.
 struct LentAnalysis {
   std::shared_ptr<PairAnalysis> analysis;
-  bool poses_in_its_frame = true;
+  bool poses_in_its_frame = false;
 };
 
 /// Holds views of the poses and faces it was made from, which must outlive it.

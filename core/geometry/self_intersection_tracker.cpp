@@ -155,8 +155,10 @@ class Buckets {
   // items are kept in a list (a face across the whole pose).
   static constexpr double kCoarserFactor = 4.0;
   static constexpr int kLevels = 8;
-  // No packed key has all 64 bits set (three 21-bit indices), so it marks a free slot.
+  // No packed key has all 64 bits set (three 21-bit indices), so it marks a free slot. A cell once
+  // added keeps its slot (erase only empties its items), so probing needs no tombstones.
   static constexpr std::uint64_t kNoKey = ~std::uint64_t{0};
+  static_assert(3 * 21 < 64, "packed cell keys must leave the free-slot mark unused");
   static constexpr std::size_t kFirstSlots = 64;
 
   struct Slot {

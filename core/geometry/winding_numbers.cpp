@@ -183,6 +183,12 @@ class WindingNumberTree::Tree {
  public:
   Tree(const Eigen::Ref<const Eigen::MatrixX3d>& vertices, const Eigen::Ref<const Eigen::MatrixX3i>& faces)
       : vertices_(vertices), faces_(faces), dipoles_(vertices_, faces_) {}
+  // The dipole tree views this object's matrices: a copy would view the original's.
+  Tree(const Tree&) = delete;
+  Tree& operator=(const Tree&) = delete;
+  Tree(Tree&&) = delete;
+  Tree& operator=(Tree&&) = delete;
+  ~Tree() = default;
   const DipoleTree& dipoles() const { return dipoles_; }
 
  private:

@@ -13,9 +13,11 @@ namespace posekit {
 /// that asks about the same surface several times pays for the tree once.
 class WindingNumberTree {
  public:
-  /// Builds the tree of the surface (#V by 3 `vertices`, #F by 3 `faces`): O(#F log #F). Keeps its
-  /// own copy of both.
-  WindingNumberTree(const Eigen::Ref<const Eigen::MatrixX3d>& vertices, const Eigen::Ref<const Eigen::MatrixX3i>& faces);
+  /// Builds the tree of the surface (#V by 3 `vertices`, #F by 3 `faces`): O(#F log #F), the halves
+  /// of large subtrees in parallel. Keeps its own copy of both. A tree moved from may only be
+  /// assigned to or destroyed.
+  WindingNumberTree(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
+                    const Eigen::Ref<const Eigen::MatrixX3i>& faces);
   ~WindingNumberTree();
   WindingNumberTree(WindingNumberTree&&) noexcept;
   WindingNumberTree& operator=(WindingNumberTree&&) noexcept;
@@ -33,7 +35,7 @@ class WindingNumberTree {
 /// Winding number of the surface (#V by 3 `vertices`, #F by 3 `faces`) at each of the #P by 3
 /// `points`: the sum of the solid angles its faces subtend, over 4 pi. Faces near a point count
 /// exactly, far clusters by their dipole (error below 0.02): O(#F log #F + #P log #F), parallel
-/// over points.
+/// over points (and over the halves of the tree it builds).
 Eigen::VectorXd winding_numbers(const Eigen::Ref<const Eigen::MatrixX3d>& vertices,
                                 const Eigen::Ref<const Eigen::MatrixX3i>& faces,
                                 const Eigen::Ref<const Eigen::MatrixX3d>& points);

@@ -47,6 +47,33 @@ TEST(HalfwayLegs, ComputesTheHalfwayPoseOncePerPair) {
   EXPECT_EQ(borrowed->new_face_count(), computed->new_face_count());
 }
 
+// The wider collar's run lends the first leg's analysis made under the first run's narrower collar:
+// its legs give what they give computing that analysis under their own collar.
+TEST(HalfwayLegs, TheFirstLegsAnalysisHoldsForAWiderCollar) {
+  const PoseSet& arm = posekit::testing::bent_arm(16, 150.0);
+  const std::unique_ptr<RepairStage> stage = make_halfway_stage();
+  testing::StageFixture narrow(arm.pose(0), arm.pose(1), arm.faces());
+  StageReport narrow_report;
+  ASSERT_TRUE(stage->run(narrow.candidate(arm.pose(1)), narrow.context, narrow_report).has_value());
+  ASSERT_NE(narrow.context.pair_analysis->first_leg, nullptr);
+
+  testing::StageFixture borrowing(arm.pose(0), arm.pose(1), arm.faces());
+  borrowing.options.collar_rings = 8;
+  borrowing.context.pair_analysis = narrow.context.pair_analysis;
+  testing::StageFixture computing(arm.pose(0), arm.pose(1), arm.faces());
+  computing.options.collar_rings = 8;
+  StageReport borrowed_report;
+  StageReport computed_report;
+  const std::optional<Candidate> borrowed =
+      stage->run(borrowing.candidate(arm.pose(1)), borrowing.context, borrowed_report);
+  const std::optional<Candidate> computed =
+      stage->run(computing.candidate(arm.pose(1)), computing.context, computed_report);
+  ASSERT_TRUE(borrowed.has_value());
+  ASSERT_TRUE(computed.has_value());
+  EXPECT_NE(computing.context.pair_analysis->first_leg, narrow.context.pair_analysis->first_leg);
+  EXPECT_TRUE(borrowed->pose() == computed->pose());
+}
+
 // An analysis lent with poses that are not in its frame yet (a first leg again): the run normalizes
 // them as the run that made the analysis did, borrows what it holds, and gives the same bits as a
 // run that lends nothing.

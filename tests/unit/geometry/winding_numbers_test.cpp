@@ -93,8 +93,12 @@ TEST(WindingNumbers, TheSameBitsOnAnyNumberOfThreadsAndFromAKeptTree) {
   const WindingNumberTree moved = std::move(*kept);
   const Eigen::VectorXd from_tree = moved.at(points);
   for (Eigen::Index i = 0; i < parallel.size(); ++i) EXPECT_EQ(from_tree(i), parallel(i)) << "point " << i;
-  EXPECT_NEAR(from_tree(0), 0.0, 2e-2);
-  EXPECT_NEAR(from_tree(points.rows() - 1), 1.0, 2e-2);
+  // The tree of the parallel build holds the dipole bound (the exact-sum tests above use meshes too
+  // small to split in parallel).
+  for (Eigen::Index i = 0; i < points.rows(); i += 25) {
+    EXPECT_NEAR(from_tree(i), exact_winding_number(vertices, sphere.faces, points.row(i).transpose()), 2e-2)
+        << "point " << i;
+  }
 }
 
 }  // namespace
