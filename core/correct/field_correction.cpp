@@ -69,7 +69,7 @@ std::vector<Eigen::MatrixX3d> tested_poses(const std::vector<Eigen::MatrixX3d>& 
 }
 
 // Each tested pose's intersecting pairs; the two ends are known already. The poses are tested side
-// by side, each test's slabs inside (faster than one pose at a time with its slabs in parallel).
+// by side, each test's own parallel search inside.
 std::vector<FacePairs> intersecting_pairs(const std::vector<Eigen::MatrixX3d>& poses,
                                           const Eigen::Ref<const Eigen::MatrixX3i>& faces,
                                           const FacePairs& first, const FacePairs& last) {

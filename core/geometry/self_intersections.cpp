@@ -1,5 +1,5 @@
-#include "cgal/box_overlaps.hpp"
 #include "cgal/face_pair_test.hpp"
+#include "geometry/box_overlaps.hpp"
 #include "geometry/face_bounds.hpp"
 #include "geometry/vertex_checks.hpp"
 

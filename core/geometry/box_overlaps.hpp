@@ -1,4 +1,4 @@
-// The broad phase of the self-intersection test: CGAL's box intersection over axis-aligned boxes.
+// The broad phase of the self-intersection test: every pair of overlapping axis-aligned boxes.
 #pragma once
 
 #include <array>
@@ -14,8 +14,9 @@ struct ItemBox {
   int item;
 };
 
-/// Every pair (a, b), a < b, of items whose boxes overlap, each once, in no particular order (CGAL's
-/// box_self_intersection_d; on large inputs in slabs searched in parallel).
+/// Every pair (a, b), a < b, of items whose closed boxes overlap (touching counts), each once, in no
+/// particular order. A bounding-volume hierarchy over the boxes in Morton order of their centres,
+/// searched against itself; large inputs in parallel.
 std::vector<std::pair<int, int>> overlapping_box_pairs(const std::vector<ItemBox>& boxes);
 
 }  // namespace posekit::detail
