@@ -69,9 +69,9 @@ bool FacePairTest::intersect(int f, int g) const {
     // An opposite edge outside the other face's box, or strictly on one side of its plane, cannot
     // meet that face. The boxes decide nine in ten of a mesh's vertex-sharing pairs and the four
     // exact orientations most of the rest, before the triangle-segment tests, with their answer.
-    // The segment st and the triangle pqr.
-    const auto misses = [](const ExactPoint& p, const ExactPoint& q, const ExactPoint& r, const ExactPoint& s,
-                           const ExactPoint& t) {
+    // Edge st and face pqr.
+    const auto edge_misses_face = [](const ExactPoint& p, const ExactPoint& q, const ExactPoint& r,
+                                     const ExactPoint& s, const ExactPoint& t) {
       for (int axis = 0; axis < 3; ++axis) {
         if (std::max(s[axis], t[axis]) < std::min({p[axis], q[axis], r[axis]}) ||
             std::min(s[axis], t[axis]) > std::max({p[axis], q[axis], r[axis]})) {
@@ -81,8 +81,8 @@ bool FacePairTest::intersect(int f, int g) const {
       const CGAL::Orientation side = CGAL::orientation(p, q, r, s);
       return side != CGAL::COPLANAR && side == CGAL::orientation(p, q, r, t);
     };
-    const bool b_edge_misses = misses(shared, a1, a2, b1, b2);
-    const bool a_edge_misses = misses(shared, b1, b2, a1, a2);
+    const bool b_edge_misses = edge_misses_face(shared, a1, a2, b1, b2);
+    const bool a_edge_misses = edge_misses_face(shared, b1, b2, a1, a2);
     return (!b_edge_misses && CGAL::do_intersect(Triangle(shared, a1, a2), Segment(b1, b2))) ||
            (!a_edge_misses && CGAL::do_intersect(Triangle(shared, b1, b2), Segment(a1, a2)));
   }

@@ -44,13 +44,13 @@ class BoxHierarchy {
  public:
   explicit BoxHierarchy(const std::vector<ItemBox>& boxes) {
     sort_boxes(boxes);
-    nodes_.reserve(2 * boxes_.size() / kLeafBoxes + 2);
+    nodes_.reserve(boxes_.size());  // a leaf holds at least two boxes: fewer nodes than boxes
     build(0, static_cast<int>(boxes_.size()));
   }
 
   Pairs overlapping_pairs() const {
     ThreadPairs found;
-    within(0, found);
+    within_in_tasks(0, found);
     Pairs all;
     std::size_t total = 0;
     for (const Pairs& part : found) total += part.size();
@@ -87,7 +87,7 @@ class BoxHierarchy {
         const double centre = 0.5 * (boxes[i].lower[a] + boxes[i].upper[a]);
         const double fraction = high[a] > low[a] ? (centre - low[a]) / (high[a] - low[a]) : 0.0;
         constexpr double kCells = 1 << kMortonBits;
-        // The comparison also catches a NaN, which a conversion to an integer must not see.
+        // Written so that a NaN (not a valid input) still gives a cell: converting it is undefined.
         const double cell = fraction > 0.0 ? std::min(fraction * kCells, kCells - 1.0) : 0.0;
         code |= spread_bits(static_cast<std::uint32_t>(cell)) << a;
       }
@@ -142,11 +142,11 @@ class BoxHierarchy {
 
   // The pairs of boxes inside one subtree: those of each child, and those across the two. Large
   // subtrees are searched as parallel tasks, each smaller search on one thread into its own list.
-  void within(int id, ThreadPairs& found) const {
+  void within_in_tasks(int id, ThreadPairs& found) const {
     const Node& n = node(id);
-    if (n.left >= 0 && size(n) >= kParallelBoxes) {
-      tbb::parallel_invoke([&] { within(n.left, found); }, [&] { within(n.right, found); },
-                           [&] { between(n.left, n.right, found); });
+    if (size(n) >= kParallelBoxes) {  // more than a leaf holds
+      tbb::parallel_invoke([&] { within_in_tasks(n.left, found); }, [&] { within_in_tasks(n.right, found); },
+                           [&] { between_in_tasks(n.left, n.right, found); });
     } else {
       within(id, found.local());
     }
@@ -167,7 +167,7 @@ class BoxHierarchy {
 
   // The pairs with one box in each of two disjoint subtrees: none where their bounds do not
   // overlap; otherwise the larger subtree is split.
-  void between(int first, int second, ThreadPairs& found) const {
+  void between_in_tasks(int first, int second, ThreadPairs& found) const {
     const Node& a = node(first);
     const Node& b = node(second);
     if (size(a) + size(b) < kParallelBoxes || !closed_overlap(a.lower, a.upper, b.lower, b.upper)) {
@@ -175,8 +175,8 @@ class BoxHierarchy {
       return;
     }
     const auto [split, other] = split_larger(first, second);
-    tbb::parallel_invoke([&, split = split, other = other] { between(node(split).left, other, found); },
-                         [&, split = split, other = other] { between(node(split).right, other, found); });
+    tbb::parallel_invoke([&, split = split, other = other] { between_in_tasks(node(split).left, other, found); },
+                         [&, split = split, other = other] { between_in_tasks(node(split).right, other, found); });
   }
 
   void between(int first, int second, Pairs& found) const {

@@ -7,7 +7,7 @@
 
 namespace posekit::detail {
 
-/// A closed axis-aligned box around item `item`.
+/// A closed axis-aligned box around item `item`; its coordinates must be finite.
 struct ItemBox {
   std::array<double, 3> lower;
   std::array<double, 3> upper;

@@ -3,9 +3,12 @@
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <cstddef>
+#include <limits>
 #include <cmath>
 #include <random>
 #include <utility>
@@ -76,7 +79,7 @@ TEST(BoxOverlaps, FewBoxes) {
 TEST(BoxOverlaps, EveryOverlappingPairOnceOnAnyNumberOfThreads) {
   // Arenas wider than the machine: allowed, so that TBB does not warn that it caps them.
   const tbb::global_control allow(tbb::global_control::max_allowed_parallelism, 16);
-  for (const int count : {2, 5, 40, 700, 9000}) {
+  for (const int count : {2, 3, 4, 5, 40, 700, 9000}) {
     const std::vector<ItemBox> boxes = lattice_boxes(count, static_cast<unsigned>(count));
     const Pairs expected = by_every_pair(boxes);
     for (const int threads : {1, 2, 16}) {
@@ -89,6 +92,24 @@ TEST(BoxOverlaps, EveryOverlappingPairOnceOnAnyNumberOfThreads) {
       EXPECT_GT(expected.size(), 20000u);
     }
   }
+}
+
+// Enough boxes for the parallel search, a hundred of them the same box, and boxes reaching to
+// infinity along an axis; the searches run inside a caller's own parallel loop.
+TEST(BoxOverlaps, RepeatedAndUnboundedBoxesInsideACallersParallelLoop) {
+  std::vector<ItemBox> boxes = lattice_boxes(6000, 7u);
+  for (std::size_t i = 0; i < 100; ++i) {
+    boxes[i].lower = {3.0, 3.0, 3.0};
+    boxes[i].upper = {3.5, 3.25, 3.0};
+  }
+  const double infinity = std::numeric_limits<double>::infinity();
+  boxes[200].lower[0] = -infinity;
+  boxes[201].upper[1] = infinity;
+  const Pairs expected = by_every_pair(boxes);
+  std::vector<Pairs> found(4);
+  tbb::parallel_for(std::size_t{0}, found.size(),
+                    [&](std::size_t k) { found[k] = sorted(overlapping_box_pairs(boxes)); });
+  for (const Pairs& pairs : found) EXPECT_EQ(pairs, expected);
 }
 
 TEST(BoxOverlaps, AllBoxesAtOnePoint) {

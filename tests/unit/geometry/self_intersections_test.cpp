@@ -122,7 +122,7 @@ TEST(SelfIntersections, RejectsBadInput) {
   EXPECT_THROW(faces_of(soup), ArgumentError);
 }
 
-// A grid of many small faces pushed through itself: enough boxes for the search in slabs, and the
+// A grid of many small faces pushed through itself: enough boxes for the parallel search, and the
 // exact answer is known from CGAL's own function.
 Soup crumpled_sheet() {
   const int n = 90;
@@ -161,9 +161,9 @@ TEST(SelfIntersections, CrumpledSheetMatchesCgal) {
   EXPECT_EQ(ours, *reference);
 }
 
-// The broad phase cuts a large mesh into slabs, two per thread: with one thread and with many, thin
-// slabs and faces that cross all of them (long slivers through the rolled sheet), the same pairs.
-TEST(SelfIntersections, SlabsOfAnyCountFindTheSamePairs) {
+// The broad phase searches a large mesh in parallel tasks: with one thread and with many, and with
+// faces whose boxes span most of the others (long slivers through the rolled sheet), the same pairs.
+TEST(SelfIntersections, AnyNumberOfThreadsFindsTheSamePairs) {
   Soup sheet = crumpled_sheet();
   const auto first_long = static_cast<int>(sheet.vertices.rows());
   sheet.vertices.conservativeResize(first_long + 9, 3);
