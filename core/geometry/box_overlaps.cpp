@@ -69,14 +69,23 @@ class BoxHierarchy {
     int right = -1;
   };
 
+  static double centre(const ItemBox& box, std::size_t axis) { return 0.5 * (box.lower[axis] + box.upper[axis]); }
+
+  // Widens `node`'s bounds to hold the box from `lower` to `upper`.
+  static void grow(Node& node, const Corner& lower, const Corner& upper) {
+    for (std::size_t a = 0; a < 3; ++a) {
+      node.lower[a] = std::min(node.lower[a], lower[a]);
+      node.upper[a] = std::max(node.upper[a], upper[a]);
+    }
+  }
+
   void sort_boxes(const std::vector<ItemBox>& boxes) {
-    Corner low = {0.0, 0.0, 0.0};
-    Corner high = {0.0, 0.0, 0.0};
-    for (std::size_t i = 0; i < boxes.size(); ++i) {
+    Corner low = {centre(boxes.front(), 0), centre(boxes.front(), 1), centre(boxes.front(), 2)};
+    Corner high = low;
+    for (const ItemBox& box : boxes) {
       for (std::size_t a = 0; a < 3; ++a) {
-        const double centre = 0.5 * (boxes[i].lower[a] + boxes[i].upper[a]);
-        low[a] = i == 0 ? centre : std::min(low[a], centre);
-        high[a] = i == 0 ? centre : std::max(high[a], centre);
+        low[a] = std::min(low[a], centre(box, a));
+        high[a] = std::max(high[a], centre(box, a));
       }
     }
     // Key: the Morton code above the box's index, so that the order is the same on every run.
@@ -84,8 +93,7 @@ class BoxHierarchy {
     for (std::size_t i = 0; i < boxes.size(); ++i) {
       std::uint32_t code = 0;
       for (std::size_t a = 0; a < 3; ++a) {
-        const double centre = 0.5 * (boxes[i].lower[a] + boxes[i].upper[a]);
-        const double fraction = high[a] > low[a] ? (centre - low[a]) / (high[a] - low[a]) : 0.0;
+        const double fraction = high[a] > low[a] ? (centre(boxes[i], a) - low[a]) / (high[a] - low[a]) : 0.0;
         constexpr double kCells = 1 << kMortonBits;
         // Written so that a NaN (not a valid input) still gives a cell: converting it is undefined.
         const double cell = fraction > 0.0 ? std::min(fraction * kCells, kCells - 1.0) : 0.0;
@@ -106,24 +114,15 @@ class BoxHierarchy {
       const int middle = begin + (end - begin) / 2;
       const int left = build(begin, middle);
       const int right = build(middle, end);
-      Node& node = nodes_[static_cast<std::size_t>(id)];
-      node.left = left;
-      node.right = right;
-      for (const int child : {left, right}) {
-        const Node& c = nodes_[static_cast<std::size_t>(child)];
-        for (std::size_t a = 0; a < 3; ++a) {
-          node.lower[a] = std::min(node.lower[a], c.lower[a]);
-          node.upper[a] = std::max(node.upper[a], c.upper[a]);
-        }
-      }
+      Node& n = nodes_[static_cast<std::size_t>(id)];
+      n.left = left;
+      n.right = right;
+      grow(n, node(left).lower, node(left).upper);
+      grow(n, node(right).lower, node(right).upper);
     } else {
-      Node& node = nodes_[static_cast<std::size_t>(id)];
       for (int i = begin + 1; i < end; ++i) {
         const ItemBox& box = boxes_[static_cast<std::size_t>(i)];
-        for (std::size_t a = 0; a < 3; ++a) {
-          node.lower[a] = std::min(node.lower[a], box.lower[a]);
-          node.upper[a] = std::max(node.upper[a], box.upper[a]);
-        }
+        grow(nodes_[static_cast<std::size_t>(id)], box.lower, box.upper);
       }
     }
     return id;
