@@ -3,7 +3,8 @@
 // blend into the target is narrower than the displacement it fades out). Such a region is given
 // the target's own shape, displaced as its surroundings are, or is relaxed as-rigidly-as-possible
 // towards that shape or the reference's; kept only where that adds no intersection and stretches
-// fewer faces.
+// fewer faces. Where a torn band around a limb cannot be relieved alone, the limb's tip beyond it,
+// which the target held back, goes with the region.
 #pragma once
 
 #include "correct/candidate.hpp"

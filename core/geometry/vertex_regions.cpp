@@ -86,6 +86,28 @@ std::vector<std::vector<int>> connected_sets(const std::vector<char>& flagged, c
   return sets;
 }
 
+std::vector<char> with_cut_off_parts(std::vector<char> region, const AdjacencyLists& neighbours) {
+  std::vector<int> piece_of(region.size(), -1);
+  int pieces = 0;
+  for (const std::vector<int>& piece : connected_sets(std::vector<char>(region.size(), 1), neighbours)) {
+    for (int v : piece) piece_of[static_cast<size_t>(v)] = pieces;
+    ++pieces;
+  }
+  std::vector<char> outside(region.size(), 0);
+  for (size_t v = 0; v < region.size(); ++v) outside[v] = region[v] == 0 ? 1 : 0;
+  std::vector<char> largest_seen(static_cast<size_t>(pieces), 0);
+  // Largest first, so the first set met in a piece is the one that stays out.
+  for (const std::vector<int>& set : connected_sets(outside, neighbours)) {
+    char& seen = largest_seen[static_cast<size_t>(piece_of[static_cast<size_t>(set.front())])];
+    if (seen == 0) {
+      seen = 1;
+      continue;
+    }
+    for (int v : set) region[static_cast<size_t>(v)] = 1;
+  }
+  return region;
+}
+
 std::vector<std::vector<int>> join_intersecting(const std::vector<std::vector<int>>& sets, const FacePairs& pairs,
                                                 const Eigen::Ref<const Eigen::MatrixX3i>& faces) {
   int vertex_count = 0;
