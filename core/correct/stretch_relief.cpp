@@ -61,7 +61,6 @@ SweepOutcome relieve_stretch(Candidate& candidate, const CorrectionContext& cont
   const auto relieve = [&](const std::vector<int>& band, const Candidate& current) -> std::optional<Probe> {
     std::vector<char> core(vertex_count, 0);
     for (int v : band) core[static_cast<size_t>(v)] = 1;
-    const int stretched = context.stretch.count(current.pose());
     const auto largest = kLargestRegionFraction * static_cast<double>(vertex_count);
     const auto too_large = [&](const std::vector<char>& region) {
       return static_cast<double>(std::count(region.begin(), region.end(), 1)) > largest;
@@ -77,9 +76,7 @@ SweepOutcome relieve_stretch(Candidate& candidate, const CorrectionContext& cont
                                                 context.faces, region, no_handles, current.pose(), context.neighbours);
         if (!moved) continue;
         Probe probe = current.probe(std::move(*moved));
-        if (probe.new_faces.size() <= current.new_faces().size() && context.stretch.count(probe.pose) < stretched) {
-          return probe;
-        }
+        if (sweep.goal.improves(probe, current)) return probe;
       }
       return std::nullopt;
     };
