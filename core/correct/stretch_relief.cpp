@@ -6,6 +6,7 @@
 
 #include <posekit/as_rigid_as_possible.hpp>
 
+#include <algorithm>
 #include <utility>
 
 namespace posekit::detail {
@@ -61,14 +62,14 @@ SweepOutcome relieve_stretch(Candidate& candidate, const CorrectionContext& cont
   const auto relieve = [&](const std::vector<int>& band, const Candidate& current) -> std::optional<Probe> {
     std::vector<char> core(vertex_count, 0);
     for (int v : band) core[static_cast<size_t>(v)] = 1;
-    const auto largest = kLargestRegionFraction * static_cast<double>(vertex_count);
+    const auto region_limit = kLargestRegionFraction * static_cast<double>(vertex_count);
     const auto too_large = [&](const std::vector<char>& region) {
-      return static_cast<double>(std::count(region.begin(), region.end(), 1)) > largest;
+      return static_cast<double>(std::count(region.begin(), region.end(), 1)) > region_limit;
     };
     // The target's shape displaced as the surroundings are; failing that, as rigid as possible
     // towards it, which keeps more of the correction's displacement inside the region; where the
     // target is itself entangled there, as rigid as possible towards the reference's shape.
-    const auto relieved = [&](const std::vector<char>& region) -> std::optional<Probe> {
+    const auto relief_in = [&](const std::vector<char>& region) -> std::optional<Probe> {
       for (int variant = 0; variant < 3; ++variant) {
         std::optional<Eigen::MatrixX3d> moved =
             variant == 0 ? std::optional<Eigen::MatrixX3d>(with_shape_of(current.pose(), context.target, region, context.neighbours))
@@ -83,12 +84,14 @@ SweepOutcome relieve_stretch(Candidate& candidate, const CorrectionContext& cont
     for (const int margin : kMarginRings) {
       const std::vector<char> region = within_rings(core, context.neighbours, margin);
       if (too_large(region)) break;
-      if (std::optional<Probe> probe = relieved(region)) return probe;
+      if (std::optional<Probe> probe = relief_in(region)) return probe;
     }
     // A band torn around a limb (faces over three times as long) may cut off its tip, which the
     // target pins where the limb has moved away: then the tip joins the region and goes with the
     // limb. Only where the band alone could not be relieved: a whole tail moved to spare a few
-    // stretched faces would leave the target's pose far behind.
+    // stretched faces would leave the target's pose far behind. The sweep retries a failed band
+    // only after a change within 8 rings of it; one in the far part of a tip goes unseen, which
+    // costs at most the second round's retry of that band.
     if (!touches(core, context.stretch.stretched_faces(current.pose(), kStronglyStretchedFactor), context.faces)) {
       return std::nullopt;
     }
@@ -97,7 +100,7 @@ SweepOutcome relieve_stretch(Candidate& candidate, const CorrectionContext& cont
       const std::vector<char> with_tip = with_cut_off_parts(region, context.neighbours);
       if (too_large(with_tip)) break;
       if (with_tip == region) continue;  // nothing cut off: tried above
-      if (std::optional<Probe> probe = relieved(with_tip)) return probe;
+      if (std::optional<Probe> probe = relief_in(with_tip)) return probe;
     }
     return std::nullopt;
   };

@@ -95,12 +95,12 @@ std::vector<char> with_cut_off_parts(std::vector<char> region, const AdjacencyLi
   }
   std::vector<char> outside(region.size(), 0);
   for (size_t v = 0; v < region.size(); ++v) outside[v] = region[v] == 0 ? 1 : 0;
-  std::vector<char> largest_seen(static_cast<size_t>(pieces), 0);
+  std::vector<char> kept_out(static_cast<size_t>(pieces), 0);
   // Largest first, so the first set met in a piece is the one that stays out.
   for (const std::vector<int>& set : connected_sets(outside, neighbours)) {
-    char& seen = largest_seen[static_cast<size_t>(piece_of[static_cast<size_t>(set.front())])];
-    if (seen == 0) {
-      seen = 1;
+    char& piece_kept_out = kept_out[static_cast<size_t>(piece_of[static_cast<size_t>(set.front())])];
+    if (piece_kept_out == 0) {
+      piece_kept_out = 1;
       continue;
     }
     for (int v : set) region[static_cast<size_t>(v)] = 1;

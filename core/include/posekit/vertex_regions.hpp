@@ -32,8 +32,8 @@ bool touches(const std::vector<char>& flagged, const std::vector<int>& face_list
 std::vector<std::vector<int>> connected_sets(const std::vector<char>& flagged, const AdjacencyLists& neighbours);
 
 /// The flagged region and every part of the mesh it cuts off: in each connected piece of the mesh,
-/// the unflagged vertices fall into connected sets, and all but the largest join the region (a tail's
-/// tip beyond a band around the tail). One flag per vertex in and out.
+/// the unflagged vertices fall into connected sets, and all but the largest (of equal ones, that with
+/// the lowest vertex) join the region: a tail's tip beyond a band around the tail. One flag per vertex.
 std::vector<char> with_cut_off_parts(std::vector<char> region, const AdjacencyLists& neighbours);
 
 /// `sets` (disjoint vertex sets) joined wherever a face with a corner in one intersects a face with a

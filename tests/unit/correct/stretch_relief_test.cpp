@@ -41,19 +41,25 @@ Tube straight_tube() {
   return tube;
 }
 
-// A limb moved sideways by a correction while its tip stayed where the target has it: the band of
-// faces between them is stretched many times over. The tip is cut off from the rest by that band,
-// so it moves with the limb, in the target's own shape, and no face stays stretched.
-TEST(StretchRelief, ATipCutOffByAStretchedBandMovesWithTheLimb) {
-  const Tube tube = straight_tube();
-  const int tip_start = kRings - 10;  // the last ten rings stayed behind
-  const Eigen::RowVector3d shift(5.0, 0.0, 0.0);
+// The tube with its first rings shifted by `shift` and its last ten left where they were.
+Eigen::MatrixX3d with_tip_left_behind(const Tube& tube, const Eigen::RowVector3d& shift) {
   Eigen::MatrixX3d moved = tube.vertices;
-  for (int v = 0; v < tip_start * kAround; ++v) moved.row(v) += shift;
+  for (int v = 0; v < (kRings - 10) * kAround; ++v) moved.row(v) += shift;
+  return moved;
+}
+
+// A limb moved sideways by a correction while its tip stayed where the target has it: the band of
+// faces between them is torn, many times as long, and too far for the rings around it to spread.
+// The tip is cut off from the rest by that band, so it moves with the limb, in the target's own
+// shape, and no face stays stretched.
+TEST(StretchRelief, ATipCutOffByATornBandMovesWithTheLimb) {
+  const Tube tube = straight_tube();
+  const Eigen::RowVector3d shift(5.0, 0.0, 0.0);
+  const Eigen::MatrixX3d moved = with_tip_left_behind(tube, shift);
   const testing::StageFixture fixture(tube.vertices, tube.vertices, tube.faces);
   Candidate result = fixture.candidate(moved);
   ASSERT_EQ(result.new_face_count(), 0);
-  ASSERT_GT(fixture.context.stretch.count(moved), 0);
+  ASSERT_GT(fixture.context.stretch.count(moved, kStronglyStretchedFactor), 0);
 
   const SweepOutcome relief = relieve_stretch(result, fixture.context);
   EXPECT_GE(relief.regions, 1);
@@ -66,6 +72,23 @@ TEST(StretchRelief, ATipCutOffByAStretchedBandMovesWithTheLimb) {
   }
   // The limb itself, far from the band, kept its place.
   EXPECT_EQ(result.pose().row(0), moved.row(0));
+}
+
+// The same tear over a shorter shift, which the rings around the band can spread: the tip stays
+// where the target has it (a whole tail is not moved to spare a band that can be relieved alone).
+TEST(StretchRelief, ATornBandRelievedAloneLeavesTheTip) {
+  const Tube tube = straight_tube();
+  const Eigen::MatrixX3d moved = with_tip_left_behind(tube, Eigen::RowVector3d(0.8, 0.0, 0.0));
+  const testing::StageFixture fixture(tube.vertices, tube.vertices, tube.faces);
+  Candidate result = fixture.candidate(moved);
+  ASSERT_GT(fixture.context.stretch.count(moved, kStronglyStretchedFactor), 0);
+
+  relieve_stretch(result, fixture.context);
+  EXPECT_EQ(fixture.context.stretch.count(result.pose()), 0);
+  for (int k = 0; k < kAround; ++k) {
+    const int v = tube.vertex(kRings - 1, k);
+    EXPECT_EQ(result.pose().row(v), moved.row(v)) << v;
+  }
 }
 
 }  // namespace
