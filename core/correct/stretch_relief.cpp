@@ -81,10 +81,12 @@ SweepOutcome relieve_stretch(Candidate& candidate, const CorrectionContext& cont
       }
       return std::nullopt;
     };
+    std::vector<std::vector<char>> tried;  // the regions within the size limit, by margin
     for (const int margin : kMarginRings) {
-      const std::vector<char> region = within_rings(core, context.neighbours, margin);
+      std::vector<char> region = within_rings(core, context.neighbours, margin);
       if (too_large(region)) break;
       if (std::optional<Probe> probe = relief_in(region)) return probe;
+      tried.push_back(std::move(region));
     }
     // A band torn around a limb (faces over three times as long) may cut off its tip, which the
     // target pins where the limb has moved away: then the tip joins the region and goes with the
@@ -95,8 +97,8 @@ SweepOutcome relieve_stretch(Candidate& candidate, const CorrectionContext& cont
     if (!touches(core, context.stretch.stretched_faces(current.pose(), kStronglyStretchedFactor), context.faces)) {
       return std::nullopt;
     }
-    for (const int margin : kMarginRings) {
-      const std::vector<char> region = within_rings(core, context.neighbours, margin);
+    // A region over the limit has a tip over it too: only the regions tried above can take one.
+    for (const std::vector<char>& region : tried) {
       const std::vector<char> with_tip = with_cut_off_parts(region, context.neighbours);
       if (too_large(with_tip)) break;
       if (with_tip == region) continue;  // nothing cut off: tried above
