@@ -174,8 +174,8 @@ void BlendedDeformer::build(const PoseSet& examples, const Eigen::MatrixXd* skin
   // (4m), and always the four of the reference with a constant weight, so that any affine map of the
   // reference stays in the space. A local weight (one that vanishes on part of the mesh, as a bone's
   // does) keeps the reference's four atoms too: its atoms say nothing of the other weights', so
-  // k-medoids would drop some bones' atoms altogether (measured: the skeleton dictionary's error with
-  // 20 points doubled on the horse).
+  // k-medoids would drop some bones' atoms altogether (measured in docs/deform-register.md, "What the
+  // skeleton dictionary holds").
   const BlendDictionary full(poses, weights);
   const int per_example = 4 * full.weight_count();
   const int kept = std::max(std::min(per_example, full.atom_count()),

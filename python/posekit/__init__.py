@@ -4,7 +4,7 @@ Vertices are numpy float64 arrays of shape (n, 3), faces integer arrays of shape
 those of the command line, as keyword arguments (``key_frames=7`` for ``--key-frames 7``). Bad input
 raises ValueError with a one-line message; a compute device that fails raises posekit.DeviceError.
 
-    V, F = posekit.read_mesh("lion-01.obj")
+    V, F = posekit.read_mesh("pose.obj")
     V_out, report = posekit.correct(V_ref, V, F)
 """
 
